@@ -1,0 +1,94 @@
+// raylab/renderer.h: from a scene, a view and the chosen modules to an image.
+//
+// The same renderer serves the CLI, the viewer, the tests and the benchmarks. It splits
+// the image into tiles, runs the pixel loop module on every tile on all cores, and for
+// each pixel traces the camera ray, finds the closest hit and shades it.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "raylab/image.h"
+#include "raylab/modules.h"
+#include "raylab/scene.h"
+
+namespace raylab {
+
+/// What a pixel shows.
+enum class ShadingMode {
+    lambert,  ///< direct light from the point lights (modules 06-08), plus ambient
+    normals,  ///< shading normal mapped from [-1, 1] to [0, 1]
+    base,     ///< the material's rho, unlit
+    depth,    ///< distance t along the camera ray, white near, black far
+};
+
+/// "lambert", "normals", "base", "depth"; parse_shading_mode throws raylab::Error
+/// otherwise.
+const char* to_string(ShadingMode mode);
+ShadingMode parse_shading_mode(const std::string& word);
+
+/// Largest accepted image side and pixel count (about 64 megapixels: 768 MiB of float
+/// RGB).
+inline constexpr int kMaxImageSide = 16384;
+inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 26;
+
+struct RenderSettings {
+    int width = 640;
+    int height = 480;
+    ShadingMode mode = ShadingMode::lambert;
+    bool shadows = true;
+    int threads = 0;  ///< 0: all hardware threads
+    Vec3 background{0.0f};
+    /// When set and it turns true, render() stops after the tiles in flight (viewer).
+    const std::atomic<bool>* cancel = nullptr;
+};
+
+/// Checks sizes and thread count; throws raylab::Error naming the problem.
+void validate(const RenderSettings& settings);
+
+/// What a frame cost. Rays are counted by kind; skipped shadow rays are the ones the
+/// renderer did not need to cast.
+struct FrameStats {
+    double milliseconds = 0.0;      ///< wall-clock render time
+    std::uint64_t camera_rays = 0;  ///< one per pixel
+    std::uint64_t shadow_rays = 0;  ///< any-hit queries cast by the shadow module
+    std::uint64_t shadow_rays_backfacing = 0;  ///< skipped: light behind the surface
+    std::uint64_t shadow_rays_disabled = 0;    ///< skipped: shadows off
+    std::uint64_t intersection_tests = 0;      ///< primitive tests of all rays
+    std::uint64_t bvh_nodes = 0;               ///< BVH nodes visited by all rays
+    std::uint64_t non_finite_pixels = 0;       ///< NaN or Inf radiance (a module bug)
+    int threads = 1;                           ///< threads used
+    bool cancelled = false;                    ///< stopped early by settings.cancel
+
+    std::uint64_t rays() const { return camera_rays + shadow_rays; }
+    double rays_per_second() const {
+        return milliseconds > 0.0 ? 1000.0 * static_cast<double>(rays()) / milliseconds
+                                  : 0.0;
+    }
+};
+
+/// The pinhole camera of view for a width x height image, built with the camera module.
+PinholeCamera make_camera(const ModuleTable& modules, const View& view);
+
+/// Renders scene as seen from view into image (resized to the settings). Thread-safe for
+/// concurrent calls on different images. Throws raylab::Error for invalid settings or
+/// view.
+FrameStats render(const Scene& scene, const View& view, const RenderSettings& settings,
+                  const ModuleTable& modules, Image& image);
+
+/// Everything about one pixel, for the viewer's inspector and for debugging.
+struct PixelProbe {
+    Vec2 uv{0.0f};           ///< image-plane point of the pixel centre
+    Ray ray;                 ///< the camera ray
+    std::optional<Hit> hit;  ///< its closest hit
+    Vec3 L{0.0f};            ///< the radiance the renderer stores
+};
+
+/// Traces the centre of pixel (i, j) exactly as render() does.
+PixelProbe probe_pixel(const Scene& scene, const View& view,
+                       const RenderSettings& settings, const ModuleTable& modules, int i,
+                       int j);
+
+}  // namespace raylab

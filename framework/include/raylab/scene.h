@@ -1,0 +1,112 @@
+// raylab/scene.h: what a scene holds, and its closest-hit and any-hit queries.
+//
+// Planes are unbounded and tested one by one; spheres and triangles live in one BVH.
+// Every intersection goes through the ModuleTable, so the student's or the reference's
+// intersect_* runs, and the counters record how much work a query did.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "raylab/bvh.h"
+#include "raylab/contract.h"
+#include "raylab/modules.h"
+
+namespace raylab {
+
+/// A Lambertian surface with optional emission.
+struct Material {
+    std::string name;
+    Vec3 rho{0.75f};  ///< diffuse reflectance rho per channel, in [0, 1]
+    Vec3 Le{0.0f};    ///< emitted radiance Le
+};
+
+struct ScenePlane {
+    Plane plane;
+    int material = 0;
+};
+
+struct SceneSphere {
+    Sphere sphere;
+    int material = 0;
+};
+
+/// A triangle; with vertex normals, the shading normal is interpolated from them.
+struct SceneTriangle {
+    Vec3 v0, v1, v2;
+    Vec3 n0{0.0f}, n1{0.0f}, n2{0.0f};  ///< vertex normals; all zero: flat shading
+    int material = 0;
+};
+
+/// Where the camera is and what it sees: the DTU camera's extrinsic parameters and FOV.
+struct View {
+    Vec3 eye{0.0f, 0.0f, 3.0f};  ///< eye point e
+    Vec3 lookat{0.0f};           ///< look-at point p
+    Vec3 up{0.0f, 1.0f, 0.0f};   ///< up hint u
+    float fov = 53.130102f;      ///< vertical field of view [degrees]; 53.13 is d = 1
+};
+
+/// Checks a view: finite values, eye != lookat, up not zero and not parallel to the view
+/// direction, fov in (0, 180). Throws raylab::Error naming the problem.
+void validate(const View& view);
+
+/// Work counters of the queries; one per thread, summed per frame.
+struct TraceCounters {
+    std::uint64_t intersection_tests = 0;  ///< primitive tests (plane, sphere, triangle)
+    std::uint64_t bvh_nodes = 0;           ///< BVH nodes whose box was tested
+};
+
+class Scene {
+  public:
+    std::string name;
+    std::vector<Material> materials;
+    std::vector<ScenePlane> planes;
+    std::vector<SceneSphere> spheres;
+    std::vector<SceneTriangle> triangles;
+    std::vector<PointLight> lights;
+    View view;  ///< a good default view of this scene
+    float ambient =
+        0.0f;  ///< constant indirect light (COMS30115's 0.5 option), times rho
+
+    /// Validates the contents (finite values, material indices, radii) and builds the
+    /// BVH. Call after every geometry change; camera and light changes need no rebuild.
+    /// Throws raylab::Error naming the first bad element.
+    void commit();
+
+    /// Bounds of spheres and triangles (planes excluded); empty box when there are none.
+    Aabb bounds() const;
+
+    /// Nearest hit along r in [tmin, tmax], with material and a shading normal that faces
+    /// the ray; std::nullopt when nothing is hit.
+    std::optional<Hit> closest_hit(const ModuleTable& modules, const Ray& r,
+                                   TraceCounters& counters) const;
+
+    /// True when anything lies on r in [tmin, tmax]; stops at the first hit.
+    bool any_hit(const ModuleTable& modules, const Ray& r, TraceCounters& counters) const;
+
+    const Bvh& bvh() const { return bvh_; }
+
+  private:
+    Bvh bvh_;  // over spheres (first) and triangles (after them)
+};
+
+/// The Occluder the shadow module receives: the scene's any-hit query, counted.
+class SceneOccluder : public Occluder {
+  public:
+    SceneOccluder(const Scene& scene, const ModuleTable& modules, TraceCounters& counters)
+        : scene_(scene), modules_(modules), counters_(counters) {}
+    bool occluded(const Ray& r) const override {
+        ++shadow_rays;
+        return scene_.any_hit(modules_, r, counters_);
+    }
+    mutable std::uint64_t shadow_rays = 0;  ///< any-hit queries made through this object
+
+  private:
+    const Scene& scene_;
+    const ModuleTable& modules_;
+    TraceCounters& counters_;
+};
+
+}  // namespace raylab

@@ -1,0 +1,252 @@
+// The renderer (raylab/renderer.h): tiles on all cores, one camera ray per pixel, closest
+// hit, shading by the chosen mode.
+#include "raylab/renderer.h"
+
+#include <atomic>
+#include <chrono>
+#include <exception>
+#include <thread>
+
+#include "raylab/error.h"
+
+namespace raylab {
+
+const char* to_string(ShadingMode mode) {
+    switch (mode) {
+        case ShadingMode::lambert:
+            return "lambert";
+        case ShadingMode::normals:
+            return "normals";
+        case ShadingMode::base:
+            return "base";
+        case ShadingMode::depth:
+            return "depth";
+    }
+    return "?";
+}
+
+ShadingMode parse_shading_mode(const std::string& word) {
+    for (ShadingMode m : {ShadingMode::lambert, ShadingMode::normals, ShadingMode::base,
+                          ShadingMode::depth}) {
+        if (word == to_string(m)) return m;
+    }
+    throw Error("unknown shading mode '" + word + "' (lambert, normals, base, depth)");
+}
+
+void validate(const RenderSettings& s) {
+    if (s.width < 1 || s.height < 1 || s.width > kMaxImageSide ||
+        s.height > kMaxImageSide || std::int64_t{s.width} * s.height > kMaxImagePixels) {
+        throw Error("resolution " + std::to_string(s.width) + "x" +
+                    std::to_string(s.height) + " is outside 1x1 .. " +
+                    std::to_string(kMaxImageSide) + " per side and " +
+                    std::to_string(kMaxImagePixels >> 20) + " megapixels in all");
+    }
+    if (s.threads < 0 || s.threads > 1024)
+        throw Error("thread count " + std::to_string(s.threads) + " is outside 0..1024");
+    if (!is_finite(s.background)) throw Error("background colour is not finite");
+}
+
+PinholeCamera make_camera(const ModuleTable& modules, const View& view) {
+    validate(view);
+    PinholeCamera camera;
+    camera.eye = view.eye;
+    camera.frame = modules.camera_frame(view.eye, view.lookat, view.up);
+    camera.d = modules.camera_constant(radians(view.fov));
+    return camera;
+}
+
+namespace {
+
+constexpr int kTileSize = 16;
+
+// Per-thread work counters, summed after the frame
+struct alignas(64) Counters {  // one cache line each: no false sharing
+    TraceCounters trace;
+    std::uint64_t camera_rays = 0;
+    std::uint64_t shadow_rays = 0;
+    std::uint64_t backfacing = 0;
+    std::uint64_t disabled = 0;
+};
+
+// The framework's per-pixel work, given to the pixel loop as PixelRadiance
+class PixelShader {
+  public:
+    PixelShader(const Scene& scene, const ModuleTable& modules,
+                const PinholeCamera& camera, const RenderSettings& settings,
+                float depth_range, Counters& counters)
+        : scene_(scene),
+          modules_(modules),
+          camera_(camera),
+          settings_(settings),
+          depth_range_(depth_range),
+          counters_(counters),
+          occluder_(scene, modules, counters.trace) {}
+
+    Vec3 radiance(const Vec2& uv, std::optional<Hit>* hit_out = nullptr,
+                  Ray* ray_out = nullptr) {
+        // Camera ray; the framework boundary normalises w (STYLE.md rule 9)
+        Ray ray = modules_.camera_ray(camera_, uv);
+        const float len = glm::length(ray.w);
+        if (!(len > 0.0f) || !std::isfinite(len) || !is_finite(ray.o))
+            return settings_.background;
+        ray.w /= len;
+        ++counters_.camera_rays;
+        if (ray_out) *ray_out = ray;
+        const std::optional<Hit> hit = scene_.closest_hit(modules_, ray, counters_.trace);
+        if (hit_out) *hit_out = hit;
+        if (!hit) return settings_.background;
+        const Material& material = scene_.materials[hit->material];
+        switch (settings_.mode) {
+            case ShadingMode::normals:
+                return 0.5f * (hit->ns + Vec3(1.0f));
+            case ShadingMode::base:
+                return material.rho;
+            case ShadingMode::depth:
+                return Vec3(std::clamp(1.0f - hit->t / depth_range_, 0.0f, 1.0f));
+            case ShadingMode::lambert:
+                break;
+        }
+        return direct_light(*hit, material);
+    }
+
+  private:
+    // Lights that reach the hit point, then the Lambert module; shadow rays only where
+    // needed
+    Vec3 direct_light(const Hit& hit, const Material& material) {
+        visible_.clear();
+        for (const PointLight& light : scene_.lights) {
+            const LightSample sample = modules_.sample_point_light(light, hit.position);
+            // Light behind the surface: no contribution, no shadow ray
+            if (!(glm::dot(hit.ns, sample.wi) > 0.0f)) {
+                ++counters_.backfacing;
+                continue;
+            }
+            if (!settings_.shadows) {
+                ++counters_.disabled;
+            } else {
+                const std::uint64_t before = occluder_.shadow_rays;
+                const bool blocked =
+                    modules_.in_shadow(occluder_, hit.position, hit.ns, sample);
+                counters_.shadow_rays += occluder_.shadow_rays - before;
+                if (blocked) continue;
+            }
+            visible_.push_back(sample);
+        }
+        return modules_.lambert(material.rho, material.Le, hit.ns, visible_) +
+               scene_.ambient * material.rho;
+    }
+
+    const Scene& scene_;
+    const ModuleTable& modules_;
+    const PinholeCamera& camera_;
+    const RenderSettings& settings_;
+    float depth_range_;
+    Counters& counters_;
+    SceneOccluder occluder_;
+    std::vector<LightSample> visible_;  // reused: no allocation per pixel
+};
+
+// Distance at which the depth view turns black: the far side of the scene's bounds
+float depth_range(const Scene& scene, const View& view) {
+    const Aabb box = scene.bounds();
+    float range = 10.0f * glm::length(view.lookat - view.eye);
+    if (box.lo.x <= box.hi.x) {
+        range =
+            glm::length(box.centre() - view.eye) + 0.5f * glm::length(box.hi - box.lo);
+    }
+    return std::max(range, 1e-6f);
+}
+
+int thread_count(const RenderSettings& settings) {
+    if (settings.threads > 0) return settings.threads;
+    return std::max(1u, std::thread::hardware_concurrency());
+}
+
+}  // namespace
+
+FrameStats render(const Scene& scene, const View& view, const RenderSettings& settings,
+                  const ModuleTable& modules, Image& image) {
+    validate(settings);
+    const auto start = std::chrono::steady_clock::now();
+    const PinholeCamera camera = make_camera(modules, view);
+    const float range = depth_range(scene, view);
+    if (image.width != settings.width || image.height != settings.height) {
+        image = Image(settings.width, settings.height);
+    } else {
+        std::fill(image.pixels.begin(), image.pixels.end(), Vec3(0.0f));
+    }
+
+    // Tiles handed out by an atomic counter: threads that finish early take more
+    const int tiles_x = (settings.width + kTileSize - 1) / kTileSize;
+    const int tiles_y = (settings.height + kTileSize - 1) / kTileSize;
+    const int tile_count = tiles_x * tiles_y;
+    const int threads = std::min(thread_count(settings), tile_count);
+    std::atomic<int> next{0};
+    std::vector<Counters> counters(static_cast<size_t>(threads));
+    std::vector<std::exception_ptr> errors(static_cast<size_t>(threads));
+    const ImageView view_out = image.view();
+    const auto work = [&](int k) {
+        try {
+            PixelShader shader(scene, modules, camera, settings, range, counters[k]);
+            const PixelRadiance radiance = [&](const Vec2& uv) {
+                return shader.radiance(uv);
+            };
+            for (int t = next++; t < tile_count; t = next++) {
+                if (settings.cancel && settings.cancel->load(std::memory_order_relaxed))
+                    break;
+                const int x0 = (t % tiles_x) * kTileSize, y0 = (t / tiles_x) * kTileSize;
+                const Tile tile{x0, y0, std::min(x0 + kTileSize, settings.width),
+                                std::min(y0 + kTileSize, settings.height)};
+                modules.render_tile(tile, radiance, view_out);
+            }
+        } catch (...) {
+            errors[k] = std::current_exception();
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int k = 1; k < threads; ++k)
+        pool.emplace_back(work, k);
+    work(0);
+    for (std::thread& t : pool)
+        t.join();
+    for (const std::exception_ptr& e : errors) {
+        if (e) std::rethrow_exception(e);
+    }
+
+    // Sum the counters
+    FrameStats stats;
+    stats.threads = threads;
+    stats.cancelled = settings.cancel && settings.cancel->load();
+    for (const Counters& c : counters) {
+        stats.camera_rays += c.camera_rays;
+        stats.shadow_rays += c.shadow_rays;
+        stats.shadow_rays_backfacing += c.backfacing;
+        stats.shadow_rays_disabled += c.disabled;
+        stats.intersection_tests += c.trace.intersection_tests;
+        stats.bvh_nodes += c.trace.bvh_nodes;
+    }
+    stats.non_finite_pixels = count_non_finite(image);
+    stats.milliseconds = std::chrono::duration<double, std::milli>(
+                             std::chrono::steady_clock::now() - start)
+                             .count();
+    return stats;
+}
+
+PixelProbe probe_pixel(const Scene& scene, const View& view,
+                       const RenderSettings& settings, const ModuleTable& modules, int i,
+                       int j) {
+    validate(settings);
+    if (i < 0 || j < 0 || i >= settings.width || j >= settings.height)
+        throw Error("pixel (" + std::to_string(i) + ", " + std::to_string(j) +
+                    ") is outside the image");
+    const PinholeCamera camera = make_camera(modules, view);
+    Counters counters;
+    PixelShader shader(scene, modules, camera, settings, depth_range(scene, view),
+                       counters);
+    PixelProbe probe;
+    probe.uv = modules.image_plane_point(i, j, settings.width, settings.height);
+    probe.L = shader.radiance(probe.uv, &probe.hit, &probe.ray);
+    return probe;
+}
+
+}  // namespace raylab

@@ -1,0 +1,195 @@
+// Scene validation and queries (raylab/scene.h).
+#include "raylab/scene.h"
+
+#include <cmath>
+
+#include "raylab/error.h"
+
+namespace raylab {
+
+namespace {
+
+std::string str(const Vec3& v) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "(%g, %g, %g)", v.x, v.y, v.z);
+    return buf;
+}
+
+Aabb sphere_box(const Sphere& s) {
+    return Aabb{s.c - Vec3(s.r), s.c + Vec3(s.r)};
+}
+
+Aabb triangle_box(const SceneTriangle& t) {
+    Aabb box;
+    box.grow(t.v0);
+    box.grow(t.v1);
+    box.grow(t.v2);
+    return box;
+}
+
+// Completes a primitive's hit: material, and a shading normal facing the ray
+void finish(Hit& hit, const Ray& r, int material, const Vec3& shading_normal) {
+    hit.material = material;
+    hit.ns = glm::dot(shading_normal, r.w) > 0.0f ? -shading_normal : shading_normal;
+}
+
+Vec3 interpolated_normal(const SceneTriangle& tri, const Hit& hit) {
+    if (tri.n0 == Vec3(0.0f)) return hit.n;
+    const Vec3 n =
+        (1.0f - hit.uv.x - hit.uv.y) * tri.n0 + hit.uv.x * tri.n1 + hit.uv.y * tri.n2;
+    const float len = glm::length(n);
+    if (!(len > 0.0f)) return hit.n;
+    // Keep the interpolated normal on the geometric normal's side
+    const Vec3 ns = n / len;
+    return glm::dot(ns, hit.n) < 0.0f ? -ns : ns;
+}
+
+}  // namespace
+
+void validate(const View& view) {
+    if (!is_finite(view.eye))
+        throw Error("camera eye " + str(view.eye) + " is not finite");
+    if (!is_finite(view.lookat))
+        throw Error("camera look-at point " + str(view.lookat) + " is not finite");
+    if (!is_finite(view.up))
+        throw Error("camera up vector " + str(view.up) + " is not finite");
+    if (!std::isfinite(view.fov) || !(view.fov > 0.0f && view.fov < 180.0f)) {
+        throw Error("field of view " + std::to_string(view.fov) +
+                    " degrees is outside (0, 180)");
+    }
+    const Vec3 n = view.lookat - view.eye;
+    if (glm::length(n) == 0.0f)
+        throw Error("camera eye and look-at point are the same point");
+    if (glm::length(view.up) == 0.0f) throw Error("camera up vector is zero");
+    const float sine =
+        glm::length(glm::cross(glm::normalize(n), glm::normalize(view.up)));
+    if (!(sine > 1e-4f)) {
+        throw Error("camera up vector " + str(view.up) +
+                    " is parallel to the view direction " + str(n));
+    }
+}
+
+void Scene::commit() {
+    const int material_count = static_cast<int>(materials.size());
+    const auto check_material = [&](int m, const std::string& what) {
+        if (m < 0 || m >= material_count)
+            throw Error(what + ": material index " + std::to_string(m) + " out of range");
+    };
+    for (size_t k = 0; k < materials.size(); ++k) {
+        const Material& m = materials[k];
+        if (!is_finite(m.rho) || !is_finite(m.Le))
+            throw Error("material '" + m.name + "' has a non-finite colour");
+    }
+    for (size_t k = 0; k < planes.size(); ++k) {
+        const Plane& p = planes[k].plane;
+        const std::string what = "plane " + std::to_string(k);
+        if (!is_finite(p.n) || !std::isfinite(p.d) ||
+            std::abs(glm::length(p.n) - 1.0f) > 1e-4f)
+            throw Error(what + ": normal must be a finite unit vector, offset finite");
+        check_material(planes[k].material, what);
+    }
+    std::vector<Aabb> boxes;
+    boxes.reserve(spheres.size() + triangles.size());
+    for (size_t k = 0; k < spheres.size(); ++k) {
+        const Sphere& s = spheres[k].sphere;
+        const std::string what = "sphere " + std::to_string(k);
+        if (!is_finite(s.c) || !std::isfinite(s.r) || !(s.r > 0.0f))
+            throw Error(what + ": centre must be finite and radius positive");
+        check_material(spheres[k].material, what);
+        boxes.push_back(sphere_box(s));
+    }
+    for (size_t k = 0; k < triangles.size(); ++k) {
+        const SceneTriangle& t = triangles[k];
+        const std::string what = "triangle " + std::to_string(k);
+        if (!is_finite(t.v0) || !is_finite(t.v1) || !is_finite(t.v2))
+            throw Error(what + ": vertex is not finite");
+        if (!is_finite(t.n0) || !is_finite(t.n1) || !is_finite(t.n2))
+            throw Error(what + ": vertex normal is not finite");
+        check_material(t.material, what);
+        boxes.push_back(triangle_box(t));
+    }
+    for (size_t k = 0; k < lights.size(); ++k) {
+        if (!is_finite(lights[k].p) || !is_finite(lights[k].I))
+            throw Error("light " + std::to_string(k) +
+                        ": position and intensity must be finite");
+    }
+    if (!std::isfinite(ambient) || ambient < 0.0f)
+        throw Error("ambient term must be finite and non-negative");
+    bvh_.build(boxes);
+}
+
+Aabb Scene::bounds() const {
+    return bvh_.empty() ? Aabb{} : bvh_.bounds();
+}
+
+std::optional<Hit> Scene::closest_hit(const ModuleTable& modules, const Ray& r,
+                                      TraceCounters& counters) const {
+    // Closest hit: every accepted hit shrinks tmax, so farther ones are rejected
+    Ray ray = r;
+    std::optional<Hit> best;
+    int best_material = 0;
+    Vec3 best_ns(0.0f);
+    for (const ScenePlane& p : planes) {
+        ++counters.intersection_tests;
+        if (auto hit = modules.intersect_plane(ray, p.plane)) {
+            ray.tmax = hit->t;
+            best = hit;
+            best_material = p.material;
+            best_ns = hit->n;
+        }
+    }
+    const std::uint32_t sphere_count = static_cast<std::uint32_t>(spheres.size());
+    bvh_.traverse(
+        ray,
+        [&](std::uint32_t prim, float& tmax) {
+            ++counters.intersection_tests;
+            ray.tmax = tmax;
+            if (prim < sphere_count) {
+                const SceneSphere& s = spheres[prim];
+                if (auto hit = modules.intersect_sphere(ray, s.sphere)) {
+                    tmax = hit->t;
+                    best = hit;
+                    best_material = s.material;
+                    best_ns = hit->n;
+                }
+            } else {
+                const SceneTriangle& t = triangles[prim - sphere_count];
+                if (auto hit = modules.intersect_triangle(ray, t.v0, t.v1, t.v2)) {
+                    tmax = hit->t;
+                    best = hit;
+                    best_material = t.material;
+                    best_ns = interpolated_normal(t, *hit);
+                }
+            }
+            return false;
+        },
+        counters.bvh_nodes);
+    if (best) finish(*best, r, best_material, best_ns);
+    return best;
+}
+
+bool Scene::any_hit(const ModuleTable& modules, const Ray& r,
+                    TraceCounters& counters) const {
+    for (const ScenePlane& p : planes) {
+        ++counters.intersection_tests;
+        if (modules.intersect_plane(r, p.plane)) return true;
+    }
+    const std::uint32_t sphere_count = static_cast<std::uint32_t>(spheres.size());
+    bool hit = false;
+    bvh_.traverse(
+        r,
+        [&](std::uint32_t prim, float&) {
+            ++counters.intersection_tests;
+            if (prim < sphere_count) {
+                hit = modules.intersect_sphere(r, spheres[prim].sphere).has_value();
+            } else {
+                const SceneTriangle& t = triangles[prim - sphere_count];
+                hit = modules.intersect_triangle(r, t.v0, t.v1, t.v2).has_value();
+            }
+            return hit;
+        },
+        counters.bvh_nodes);
+    return hit;
+}
+
+}  // namespace raylab
