@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (options.output.empty()) options.output = "raylab.png";
+        check_image_extension(options.output);
         const Scene scene = make_scene(options);
         const ModuleTable modules = ModuleTable::make(options.modules);
         std::printf("scene %s: %zu triangles, %zu spheres, %zu planes, %zu lights\n",

@@ -79,14 +79,31 @@ Image read_pfm(const std::string& path) {
     return image;
 }
 
+namespace {
+
+bool ends_with(const std::string& path, const char* ext) {
+    const size_t n = std::strlen(ext);
+    return path.size() >= n && path.compare(path.size() - n, n, ext) == 0;
+}
+
+bool is_png(const std::string& path) {
+    return ends_with(path, ".png") || ends_with(path, ".PNG");
+}
+bool is_pfm(const std::string& path) {
+    return ends_with(path, ".pfm") || ends_with(path, ".PFM");
+}
+
+}  // namespace
+
+void check_image_extension(const std::string& path) {
+    if (!is_png(path) && !is_pfm(path))
+        throw Error("output '" + path + "': unknown image type (use .png or .pfm)");
+}
+
 void write_image(const std::string& path, const Image& image, float exposure) {
-    const auto ends_with = [&](const char* ext) {
-        const size_t n = std::strlen(ext);
-        return path.size() >= n && path.compare(path.size() - n, n, ext) == 0;
-    };
-    if (ends_with(".png") || ends_with(".PNG")) return write_png(path, image, exposure);
-    if (ends_with(".pfm") || ends_with(".PFM")) return write_pfm(path, image);
-    throw Error("output '" + path + "': unknown image type (use .png or .pfm)");
+    check_image_extension(path);
+    if (is_png(path)) return write_png(path, image, exposure);
+    write_pfm(path, image);
 }
 
 }  // namespace raylab

@@ -47,6 +47,9 @@ void write_pfm(const std::string& path, const Image& image);
 /// Reads a PFM written by write_pfm (or any 3-channel PFM). Throws raylab::Error.
 Image read_pfm(const std::string& path);
 
+/// Throws raylab::Error unless path ends in .png or .pfm (checked before a long render).
+void check_image_extension(const std::string& path);
+
 /// Writes PNG or PFM, chosen by the file's extension. Throws raylab::Error otherwise.
 void write_image(const std::string& path, const Image& image, float exposure = 0.0f);
 

@@ -1,0 +1,65 @@
+// Small helpers shared by the framework tests.
+#pragma once
+
+#include <cstdio>
+#include <ostream>
+#include <string>
+
+#include <doctest/doctest.h>
+
+#include "raylab/contract.h"
+#include "raylab/modules.h"
+
+namespace raylab {
+
+inline std::ostream& operator<<(std::ostream& os, const Vec3& v) {
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "(%.9g, %.9g, %.9g)", v.x, v.y, v.z);
+    return os << buf;
+}
+
+inline std::ostream& operator<<(std::ostream& os, const Ray& r) {
+    return os << "Ray{o=" << r.o << ", w=" << r.w << ", tmin=" << r.tmin
+              << ", tmax=" << r.tmax << "}";
+}
+
+/// The table with every module switched to the reference.
+inline const ModuleTable& reference_modules() {
+    static const ModuleTable table =
+        ModuleTable::make(ModuleSelection::all(Impl::reference));
+    return table;
+}
+
+/// A small deterministic generator (PCG32, O'Neill 2014): tests print the seed they use.
+class Rng {
+  public:
+    explicit Rng(std::uint64_t seed)
+        : state_(seed * 6364136223846793005ull + 1442695040888963407ull) {}
+    std::uint32_t next() {
+        const std::uint64_t old = state_;
+        state_ = old * 6364136223846793005ull + 1442695040888963407ull;
+        const std::uint32_t shifted =
+            static_cast<std::uint32_t>(((old >> 18u) ^ old) >> 27u);
+        const std::uint32_t rot = static_cast<std::uint32_t>(old >> 59u);
+        return (shifted >> rot) | (shifted << ((32u - rot) & 31u));
+    }
+    /// Uniform in [lo, hi).
+    float uniform(float lo, float hi) {
+        return lo + (hi - lo) * (next() >> 8) * 0x1p-24f;
+    }
+    Vec3 in_box(float lo, float hi) {
+        return Vec3(uniform(lo, hi), uniform(lo, hi), uniform(lo, hi));
+    }
+    Vec3 direction() {
+        for (;;) {
+            const Vec3 v = in_box(-1.0f, 1.0f);
+            const float l2 = glm::dot(v, v);
+            if (l2 > 1e-4f && l2 <= 1.0f) return v / std::sqrt(l2);
+        }
+    }
+
+  private:
+    std::uint64_t state_;
+};
+
+}  // namespace raylab
