@@ -1,0 +1,26 @@
+# raylab: the same commands as scripts/dev.sh, for those who type `make`.
+#   make run                                 viewer (or build/cornell.png without a display)
+#   make run ARGS="--reference all"          extra flags for the viewer / raylab-render
+#   make test                                what CI runs
+#   make grade SUBMISSION=~/handin GRADE_OUT=report.md
+#   make release OUT=/tmp/raylab-student
+# `make help` lists everything. Variables: ARGS, SUBMISSION, GRADE_OUT, OUT.
+
+DEV := ./scripts/dev.sh
+
+# Hand the grading variables to scripts/grade.sh when they are given
+ifdef SUBMISSION
+export SUBMISSION
+endif
+ifdef GRADE_OUT
+export GRADE_OUT
+endif
+
+.DEFAULT_GOAL := help
+.PHONY: run test build grade grade-reference release bench format clean help
+
+run test build grade grade-reference bench format clean help:
+	$(DEV) $@ $(ARGS)
+
+release:
+	$(DEV) release $(OUT) $(ARGS)

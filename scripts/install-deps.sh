@@ -1,0 +1,116 @@
+#!/usr/bin/env bash
+# Install the Debian 12 packages raylab needs, and only those that are missing.
+#
+# Usage: scripts/install-deps.sh [--check | --list] [GROUP...]
+#   GROUP    build    compiler and build tools: g++ make cmake ninja-build pkg-config
+#            libs     libraries: GLM, tinyobjloader, stb, doctest, Dear ImGui, GLFW, GL headers
+#            gui      running the GUI tests headless: Xvfb, xauth, Mesa, xdotool (alias gui-test)
+#            format   clang-format (the style check of `scripts/dev.sh test`)
+#            bench    Embree (the peer of the benchmark)
+#            all      every group above
+#            (default: build libs)
+#   --check  only report what is missing; exit 1 if anything is
+#   --list   print the packages of the groups, one a line, and exit
+#
+# Idempotent and non-interactive: it asks dpkg what is installed, runs `apt-get update` only
+# when something is missing, installs without recommended packages, and waits up to 10 minutes
+# for another apt/dpkg to release its lock. Needs root, or sudo when not root.
+set -euo pipefail
+# shellcheck source=lib/common.sh
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
+
+# Package groups (Debian 12 names; versions in ../shared/BUILD-NOTES.md)
+group_packages() {
+    case $1 in
+        build) echo g++ make cmake ninja-build pkg-config ;;
+        # libgl-dev/libopengl-dev: the GL headers and libraries FindOpenGL (GLVND) and GLFW use
+        libs) echo libglm-dev libtinyobjloader-dev libstb-dev doctest-dev libimgui-dev \
+            libglfw3-dev libgl-dev libopengl-dev ;;
+        # xauth is only recommended by xvfb, but xvfb-run needs it; Mesa's llvmpipe renders GL
+        gui | gui-test) echo xvfb xauth libgl1-mesa-dri xdotool ;;
+        format) echo clang-format ;;
+        bench) echo libembree-dev ;;
+        *) return 1 ;;
+    esac
+}
+ALL_GROUPS=(build libs gui format bench)
+
+usage() { sed -n '2,/^[^#]/{/^#/s/^# \{0,1\}//p}' "$0"; }
+
+# Arguments
+mode=install
+groups=()
+for arg in "$@"; do
+    case $arg in
+        -h | --help) usage; exit 0 ;;
+        --check) mode=check ;;
+        --list) mode=list ;;
+        all) groups+=("${ALL_GROUPS[@]}") ;;
+        -*) usage >&2; die "unknown option: $arg" ;;
+        *) group_packages "$arg" >/dev/null ||
+            die "unknown group '$arg' (groups: ${ALL_GROUPS[*]} all)"
+            groups+=("$arg") ;;
+    esac
+done
+((${#groups[@]})) || groups=(build libs)
+
+# The packages of the chosen groups, without repeats
+packages=()
+for g in "${groups[@]}"; do
+    for p in $(group_packages "$g"); do
+        [[ " ${packages[*]} " == *" $p "* ]] || packages+=("$p")
+    done
+done
+if [[ $mode == list ]]; then
+    printf '%s\n' "${packages[@]}"
+    exit 0
+fi
+
+# Not Debian: say what to install and let CMake report what is really missing
+if ! have dpkg-query || ! have apt-get; then
+    warn "no dpkg/apt-get here: this script knows Debian 12 only. Install the equivalents of:"
+    note "${packages[*]}"
+    [[ $mode == check ]] && exit 1
+    exit 0
+fi
+
+# What is missing? (dpkg's own record, not a guess from the PATH)
+missing=()
+for p in "${packages[@]}"; do
+    status=$(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null || true)
+    [[ $status == installed ]] || missing+=("$p")
+done
+if ((${#missing[@]} == 0)); then
+    step "Dependencies (${groups[*]}): all present"
+    exit 0
+fi
+if [[ $mode == check ]]; then
+    step "Dependencies (${groups[*]}): missing ${missing[*]}"
+    exit 1
+fi
+
+# Root, or sudo; never a prompt in CI or without a terminal
+if ((EUID == 0)); then
+    as_root=()
+elif have sudo; then
+    if [[ ${CI:-} == true || ! -t 0 ]]; then as_root=(sudo -n); else as_root=(sudo); fi
+else
+    die "installing ${missing[*]} needs root, and this is neither root nor has sudo.
+       As root, run: apt-get update && apt-get install --no-install-recommends ${missing[*]}"
+fi
+
+step "Installing (${groups[*]}): ${missing[*]}"
+apt=(env DEBIAN_FRONTEND=noninteractive apt-get -o DPkg::Lock::Timeout=600)
+"${as_root[@]}" "${apt[@]}" -q update ||
+    die "apt-get update failed (as ${as_root[*]:-root}); see above"
+"${as_root[@]}" "${apt[@]}" -q -y --no-install-recommends install "${missing[@]}" ||
+    die "apt-get install failed for: ${missing[*]}"
+
+# Check that dpkg now has every one of them
+still=()
+for p in "${missing[@]}"; do
+    status=$(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null || true)
+    [[ $status == installed ]] || still+=("$p")
+done
+((${#still[@]} == 0)) || die "still not installed after apt-get: ${still[*]}"
+step "Installed: ${missing[*]}"
