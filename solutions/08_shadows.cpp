@@ -8,12 +8,14 @@ namespace raylab::reference {
 ///
 /// Self-intersection (handout 08 §3): x carries rounding error, so the ray starts a
 /// little off the surface, on the light's side, and stops a little short of the light.
-/// The offset scales with the size of x, so the test also works far from the origin.
+/// The offset is a small absolute margin plus 8 ulps of the largest coordinate of x, so
+/// it grows with the rounding error of positions far from the origin and stays tiny near
+/// it.
 bool in_shadow(const Occluder& scene, const Vec3& x, const Vec3& n,
                const LightSample& sample) {
     // Offset along the normal, towards the light's side of the surface
-    const float scale = std::max({1.0f, std::abs(x.x), std::abs(x.y), std::abs(x.z)});
-    const float eps = 1e-4f * scale;
+    const float scale = std::max({std::abs(x.x), std::abs(x.y), std::abs(x.z)});
+    const float eps = 1e-4f + 8.0f * std::numeric_limits<float>::epsilon() * scale;
     const Vec3 side = glm::dot(n, sample.wi) >= 0.0f ? n : -n;
     const Vec3 o = x + eps * side;
     // Segment to the light, stopping short of it
