@@ -42,9 +42,10 @@ struct RaySlabs {
         : o(r.o), inv_w(1.0f / r.w.x, 1.0f / r.w.y, 1.0f / r.w.z) {}
 };
 
-/// Slab test: true when the ray meets box for some t in [tmin, tmax]. The far distance is
-/// enlarged by 2 gamma(3) (pbrt-v4 §6.1.2) so rounding never culls a box the ray touches.
-inline bool hits_box(const RaySlabs& s, const Aabb& box, float tmin, float tmax) {
+/// Slab test: the distance at which the ray enters box, or +infinity when it misses box
+/// in [tmin, tmax]. The far distance is enlarged by 2 gamma(3) (pbrt-v4 §6.1.2) so
+/// rounding never culls a box the ray touches.
+inline float box_entry(const RaySlabs& s, const Aabb& box, float tmin, float tmax) {
     const Vec3 t0 = (box.lo - s.o) * s.inv_w;
     const Vec3 t1 = (box.hi - s.o) * s.inv_w;
     const Vec3 tnear = glm::min(t0, t1), tfar = glm::max(t0, t1);
@@ -60,7 +61,7 @@ inline bool hits_box(const RaySlabs& s, const Aabb& box, float tmin, float tmax)
     const float t_exit = min(tfar.x, min(tfar.y, min(tfar.z, tmax)));
     constexpr float kGrow =
         1.0f + 2.0f * 3.0f * 0.5f * std::numeric_limits<float>::epsilon();
-    return t_enter <= t_exit * kGrow;
+    return t_enter <= t_exit * kGrow ? t_enter : kInfinity;
 }
 
 class Bvh {
@@ -72,7 +73,7 @@ class Bvh {
         std::uint32_t first_or_second =
             0;                    ///< leaf: first primitive; interior: right child
         std::uint16_t count = 0;  ///< primitives in a leaf, 0 for interior nodes
-        std::uint16_t axis = 0;   ///< interior: the split axis (near child first)
+        std::uint16_t axis = 0;   ///< interior: the split axis
     };
 
     /// Builds the tree over one box per primitive (binned SAH, 16 bins).
@@ -82,7 +83,7 @@ class Bvh {
     size_t node_count() const { return nodes_.size(); }
     const Aabb& bounds() const { return nodes_.front().box; }
 
-    /// Visits every leaf primitive whose box the ray may meet, nearest child first.
+    /// Visits every leaf primitive whose box the ray may meet, nearer child first.
     /// visit(prim, tmax) is called with the primitive index and a reference to the
     /// current tmax, which it may shrink (closest hit); it returns true to stop (any
     /// hit). nodes_visited counts the nodes whose box was tested.
@@ -98,30 +99,46 @@ template <class Visit>
 void Bvh::traverse(const Ray& r, Visit&& visit, std::uint64_t& nodes_visited) const {
     if (nodes_.empty()) return;
     const RaySlabs slabs(r);
-    const bool negative[3] = {r.w.x < 0.0f, r.w.y < 0.0f, r.w.z < 0.0f};
     float tmax = r.tmax;
-    std::uint32_t stack[128];  // the build bounds the depth by 72
+    ++nodes_visited;
+    if (box_entry(slabs, nodes_.front().box, r.tmin, tmax) == kInfinity) return;
+    // Both children's boxes are tested together; the nearer is visited first and the
+    // farther waits on the stack with its entry distance, skipped if a hit has come
+    // closer since
+    struct Entry {
+        std::uint32_t index;
+        float t_enter;
+    };
+    Entry stack[128];  // the build bounds the depth by 72
     int top = 0;
     std::uint32_t index = 0;
     for (;;) {
         const Node& node = nodes_[index];
-        ++nodes_visited;
-        if (hits_box(slabs, node.box, r.tmin, tmax)) {
-            if (node.count > 0) {
-                for (std::uint32_t k = 0; k < node.count; ++k) {
-                    if (visit(prims_[node.first_or_second + k], tmax)) return;
-                }
-            } else {
-                // Near child first, by the sign of w along the split axis
-                std::uint32_t near = index + 1, far = node.first_or_second;
-                if (negative[node.axis]) std::swap(near, far);
-                stack[top++] = far;
+        if (node.count > 0) {
+            for (std::uint32_t k = 0; k < node.count; ++k) {
+                if (visit(prims_[node.first_or_second + k], tmax)) return;
+            }
+        } else {
+            std::uint32_t near = index + 1, far = node.first_or_second;
+            float t_near = box_entry(slabs, nodes_[near].box, r.tmin, tmax);
+            float t_far = box_entry(slabs, nodes_[far].box, r.tmin, tmax);
+            nodes_visited += 2;
+            if (t_far < t_near) {
+                std::swap(near, far);
+                std::swap(t_near, t_far);
+            }
+            if (t_near != kInfinity) {
+                if (t_far != kInfinity) stack[top++] = Entry{far, t_far};
                 index = near;
                 continue;
             }
         }
-        if (top == 0) return;
-        index = stack[--top];
+        // Next waiting node that the ray can still reach before its closest hit so far
+        do {
+            if (top == 0) return;
+            --top;
+        } while (stack[top].t_enter > tmax);
+        index = stack[top].index;
     }
 }
 
