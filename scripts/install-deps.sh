@@ -100,11 +100,23 @@ else
 fi
 
 step "Installing (${groups[*]}): ${missing[*]}"
+t0=$SECONDS
 apt=(env DEBIAN_FRONTEND=noninteractive apt-get -o DPkg::Lock::Timeout=600)
 "${as_root[@]}" "${apt[@]}" -q update ||
     die "apt-get update failed (as ${as_root[*]:-root}); see above"
-"${as_root[@]}" "${apt[@]}" -q -y --no-install-recommends install "${missing[@]}" ||
-    die "apt-get install failed for: ${missing[*]}"
+# dpkg's per-package lines go to a log; apt's summary, lock waits and errors stay visible
+log=$(mktemp "${TMPDIR:-/tmp}/raylab-apt.XXXXXX")
+set +e
+"${as_root[@]}" "${apt[@]}" -q -y --no-install-recommends install "${missing[@]}" 2>&1 |
+    tee "$log" |
+    grep -vE '^(Selecting previously|Preparing to unpack|Unpacking|Setting up|Processing triggers|\(Reading database|Get:[0-9]+ |update-alternatives:)'
+apt_status=${PIPESTATUS[0]} # grep finding nothing to show is no failure
+set -e
+if ((apt_status != 0)); then
+    tail -n 30 "$log" >&2
+    die "apt-get install failed (exit $apt_status) for: ${missing[*]} (full log: $log)"
+fi
+rm -f "$log"
 
 # Check that dpkg now has every one of them
 still=()
@@ -113,4 +125,4 @@ for p in "${missing[@]}"; do
     [[ $status == installed ]] || still+=("$p")
 done
 ((${#still[@]} == 0)) || die "still not installed after apt-get: ${still[*]}"
-step "Installed: ${missing[*]}"
+step "Installed ${#missing[@]} packages in $((SECONDS - t0)) s"
