@@ -102,7 +102,7 @@ fi
 step "Installing (${groups[*]}): ${missing[*]}"
 t0=$SECONDS
 apt=(env DEBIAN_FRONTEND=noninteractive apt-get -o DPkg::Lock::Timeout=600)
-"${as_root[@]}" "${apt[@]}" -q update ||
+"${as_root[@]}" "${apt[@]}" -o Acquire::Languages=none -q update ||
     die "apt-get update failed (as ${as_root[*]:-root}); see above"
 # dpkg's per-package lines go to a log; apt's summary, lock waits and errors stay visible
 log=$(mktemp "${TMPDIR:-/tmp}/raylab-apt.XXXXXX")
