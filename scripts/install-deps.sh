@@ -93,7 +93,15 @@ fi
 if ((EUID == 0)); then
     as_root=()
 elif have sudo; then
-    if [[ ${CI:-} == true || ! -t 0 ]]; then as_root=(sudo -n); else as_root=(sudo); fi
+    if [[ ${CI:-} == true || ! -t 0 ]]; then
+        as_root=(sudo -n)
+        sudo -n true 2>/dev/null ||
+            die "installing ${missing[*]} needs root: sudo wants a password, and this run cannot
+       ask for one (CI=true or no terminal). Run once from a terminal: $0 ${groups[*]}
+       or as root: apt-get update && apt-get install --no-install-recommends ${missing[*]}"
+    else
+        as_root=(sudo)
+    fi
 else
     die "installing ${missing[*]} needs root, and this is neither root nor has sudo.
        As root, run: apt-get update && apt-get install --no-install-recommends ${missing[*]}"
