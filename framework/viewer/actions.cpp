@@ -1,0 +1,344 @@
+// The panel's actions and the scripted runs' steps (viewer/actions.h).
+#include "actions.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "raylab/error.h"
+#include "raylab/scenes.h"
+#include "view_file.h"
+
+namespace raylab::viewer {
+
+namespace {
+
+std::string fmt(const char* format, double a, double b = 0.0, double c = 0.0) {
+    char text[256];
+    std::snprintf(text, sizeof text, format, a, b, c);
+    return text;
+}
+
+std::string scene_summary(const Scene& s) {
+    return s.name + ": " + std::to_string(s.triangles.size()) + " triangles, " +
+           std::to_string(s.spheres.size()) + " spheres, " +
+           std::to_string(s.planes.size()) + " planes, " +
+           std::to_string(s.lights.size()) + " lights";
+}
+
+void set_scene(Viewer& v, Scene scene, const std::string& source) {
+    ViewerState& s = v.state;
+    s.scene = std::move(scene);
+    s.scene_source = source;
+    ++s.scene_version;
+    s.view = s.scene.view;
+    s.selected_light = 0;
+    s.dirty = true;
+    v.panel.view_edit = s.view;
+    v.panel.view_error.clear();
+    v.panel.error.clear();
+    v.inspector.pinned = false;
+    v.log.add("scene " + scene_summary(s.scene));
+}
+
+}  // namespace
+
+std::string view_line(const View& view) {
+    const auto t = [](const Vec3& p) { return fmt("%.6g,%.6g,%.6g", p.x, p.y, p.z); };
+    return "eye " + t(view.eye) + " lookat " + t(view.lookat) + " up " + t(view.up) +
+           " fov " + fmt("%.6g", view.fov);
+}
+
+int preview_factor(double full_ms) {
+    if (!(full_ms > 25.0)) return 1;
+    return std::clamp(static_cast<int>(std::ceil(std::sqrt(full_ms / 25.0))), 2, 8);
+}
+
+void init_viewer(Viewer& v, const Options& options, const ViewerOptions& viewer_options,
+                 std::function<void()> wake) {
+    v.options = viewer_options;
+    ViewerState& s = v.state;
+    s.scene = make_scene(options);
+    s.scene_source = options.scene;
+    s.view = s.scene.view;
+    s.settings = options.settings;
+    s.exposure = options.exposure;
+    s.modules = options.modules;
+    s.stubs = detect_stubs();  // before the worker runs student code
+    s.image_scale = viewer_options.image_scale;
+    if (viewer_options.compare && !reference_available())
+        throw Error("--compare needs the reference solutions, and this build has none");
+    s.compare = viewer_options.compare;
+    if (!viewer_options.load_view.empty()) {
+        const ViewFile file = load_view_file(viewer_options.load_view);
+        s.view = file.view;
+        s.scene.lights = file.lights;
+    }
+    v.panel.view_edit = s.view;
+    v.panel.size_edit[0] = s.settings.width;
+    v.panel.size_edit[1] = s.settings.height;
+    v.panel.report_dir = default_report_dir();
+    for (size_t k = 0; k < builtin_scene_names().size(); ++k) {
+        if (builtin_scene_names()[k] == options.scene) v.panel.scene_choice = int(k);
+    }
+    v.grading_binary = find_grading_binary(v.exe_path);
+    v.log.add("scene " + scene_summary(s.scene));
+    v.log.add("modules: " + describe(s.modules));
+    v.worker = std::make_unique<RenderWorker>(wake);
+    v.grading = std::make_unique<GradingRun>(wake);
+}
+
+void report_error(Viewer& v, const std::string& message) {
+    v.panel.error = message;
+    v.log.add("error: " + message);
+    std::fprintf(stderr, "raylab: error: %s\n", message.c_str());
+}
+
+bool apply_view(Viewer& v, const View& view) {
+    try {
+        validate(view);
+    } catch (const Error& e) {
+        v.panel.view_error = std::string("not applied: ") + e.what();
+        return false;
+    }
+    v.panel.view_error.clear();
+    v.state.view = view;
+    v.state.dirty = true;
+    return true;
+}
+
+void start_loading_scene(Viewer& v, const std::string& source) {
+    if (v.loading.valid()) {
+        report_error(v,
+                     "still loading " + v.loading_source + "; try again when it is done");
+        return;
+    }
+    const auto& names = builtin_scene_names();
+    if (std::find(names.begin(), names.end(), source) != names.end()) {
+        set_scene(v, load_scene(source), source);
+        return;
+    }
+    v.log.add("loading " + source + " ...");
+    v.loading_source = source;
+    v.loading = std::async(std::launch::async, [source] { return load_scene(source); });
+}
+
+void finish_loading(Viewer& v) {
+    if (!v.loading.valid() ||
+        v.loading.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+        return;
+    try {
+        set_scene(v, v.loading.get(), v.loading_source);
+    } catch (const std::exception& e) {
+        report_error(
+            v, std::string(e.what()) + " (still showing " + v.state.scene_source + ")");
+    }
+}
+
+bool load_view(Viewer& v, const std::string& path) {
+    try {
+        const ViewFile file = load_view_file(path);
+        v.state.view = file.view;
+        v.state.scene.lights = file.lights;
+        v.state.selected_light = 0;
+        v.state.dirty = true;
+        v.panel.view_edit = file.view;
+        v.panel.view_error.clear();
+        v.panel.error.clear();
+        v.log.add("loaded view " + path + ": " + view_line(file.view) + ", " +
+                  std::to_string(file.lights.size()) + " lights");
+        return true;
+    } catch (const std::exception& e) {
+        report_error(v, e.what());
+        return false;
+    }
+}
+
+bool save_view(Viewer& v, const std::string& path) {
+    try {
+        save_view_file(path, v.state.view, v.state.scene.lights);
+        v.log.add("saved view " + path + ": " + view_line(v.state.view));
+        return true;
+    } catch (const std::exception& e) {
+        report_error(v, e.what());
+        return false;
+    }
+}
+
+bool save_image(Viewer& v, const std::string& path) {
+    if (!v.frames.have_full) {
+        report_error(v, "no full image rendered yet: nothing to save");
+        return false;
+    }
+    try {
+        write_image(path, v.frames.full, v.state.exposure);
+        v.log.add("saved image " + path);
+        return true;
+    } catch (const std::exception& e) {
+        report_error(v, e.what());
+        return false;
+    }
+}
+
+ReportInput report_input(const Viewer& v) {
+    ReportInput in;
+    in.scene_source = v.state.scene_source;
+    in.view = v.state.view;
+    in.lights = v.state.scene.lights;
+    in.ambient = v.state.scene.ambient;
+    in.settings = v.state.settings;
+    in.exposure = v.state.exposure;
+    in.modules = v.state.modules;
+    in.stats = v.frames.last_full;
+    in.image = v.frames.have_full ? &v.frames.full : nullptr;
+    in.grades = grades_text(v);
+    in.log = v.log.text();
+    return in;
+}
+
+bool save_report(Viewer& v, const std::string& dir) {
+    try {
+        write_report(dir, report_input(v));
+        v.log.add("saved report " + dir +
+                  "/ (view.txt, settings.txt, image.png, log.txt)");
+        return true;
+    } catch (const std::exception& e) {
+        report_error(v, e.what());
+        return false;
+    }
+}
+
+void run_tests(Viewer& v) {
+    if (v.grading_binary.empty()) {
+        report_error(
+            v,
+            "the graders are not built: raylab-grading-tests is not in "
+            "tests/grading/ of this build (set RAYLAB_GRADING_TESTS to its path)");
+        return;
+    }
+    if (v.grading->running()) return;
+    v.log.add("running the graders of every module: " + v.grading_binary);
+    v.grading->start(v.grading_binary);
+    v.grading_logged = false;
+}
+
+void poll_grading(Viewer& v) {
+    if (v.grading_logged || v.grading->running()) return;
+    v.grading_logged = true;
+    v.log.add("tests of the student's code:\n" + grades_text(v));
+}
+
+std::string grades_text(const Viewer& v) {
+    if (!v.grading) return "";
+    const auto grades = v.grading->grades();
+    std::string text;
+    for (const ModuleInfo& info : module_infos()) {
+        const ModuleGrade& g = grades[static_cast<int>(info.module)];
+        if (g.status == ModuleGrade::Status::not_run) continue;
+        char line[160];
+        std::snprintf(
+            line, sizeof line, "  %-15s %-9s %s\n", info.id,
+            v.state.modules[info.module] == Impl::student ? "student" : "reference",
+            g.summary.c_str());
+        text += line;
+    }
+    return text;
+}
+
+void submit_if_dirty(Viewer& v) {
+    ViewerState& s = v.state;
+    if (!s.dirty) return;
+    RenderJob job;
+    job.id = v.frames.next_job++;
+    if (s.sent_version != s.scene_version) {
+        job.scene = std::make_shared<Scene>(s.scene);  // the worker's own copy
+        s.sent_version = s.scene_version;
+    }
+    job.scene_version = s.scene_version;
+    job.lights = s.scene.lights;
+    job.ambient = s.scene.ambient;
+    job.view = s.view;
+    job.settings = s.settings;
+    job.modules = s.modules;
+    job.compare = s.compare;
+    job.interactive = s.interacting;
+    job.preview_factor =
+        s.interacting ? preview_factor(v.frames.last_full.milliseconds) : 1;
+    v.frames.last_job = job.id;
+    v.frames.last_job_preview = job.preview_factor > 1;
+    v.worker->submit(std::move(job));
+    s.dirty = false;
+}
+
+bool take_result(Viewer& v) {
+    std::optional<RenderResult> r = v.worker->take_result();
+    if (!r) return false;
+    FrameState& f = v.frames;
+    f.failed = !r->error.empty();
+    if (f.failed) {
+        report_error(v, "render failed: " + r->error);
+        return true;
+    }
+    f.history_ms.push_back(static_cast<float>(r->stats.milliseconds));
+    if (f.history_ms.size() > 240) f.history_ms.erase(f.history_ms.begin());
+    f.shown = std::move(r->image);
+    f.shown_preview = r->preview;
+    f.last = r->stats;
+    v.state.retone = true;
+    if (r->preview) return true;
+    f.full = f.shown;
+    f.have_full = true;
+    f.last_full = r->stats;
+    f.difference = std::move(r->difference);
+    ++f.full_frames;
+    const FrameStats& st = r->stats;
+    std::string line = "rendered " + std::to_string(f.full.width) + "x" +
+                       std::to_string(f.full.height) + " (" +
+                       to_string(v.state.settings.mode) + ", shadows " +
+                       (v.state.settings.shadows ? "on" : "off") + ") in " +
+                       fmt("%.2f ms on %.0f threads: %.2f Mrays/s", st.milliseconds,
+                           st.threads, st.rays_per_second() * 1e-6);
+    if (f.difference) {
+        line += fmt("; vs reference: RMSE %.3g, max error %.3g", f.difference->rmse,
+                    f.difference->max_error);
+    }
+    v.log.add(line);
+    if (st.non_finite_pixels > 0) {
+        report_error(v, std::to_string(st.non_finite_pixels) +
+                            " pixels are NaN or infinite (shown black): a module "
+                            "returned an invalid value");
+    }
+    return true;
+}
+
+void update_probes(Viewer& v) {
+    InspectorState& in = v.inspector;
+    const bool any = in.pinned || (in.hovering && v.state.inspector);
+    if (!any) {
+        in.probe.reset();
+        in.reference.reset();
+        in.probed_i = -1;
+        return;
+    }
+    const int i = in.pinned ? in.pin_i : in.i, j = in.pinned ? in.pin_j : in.j;
+    if (i == in.probed_i && j == in.probed_j && in.probed_job == v.frames.last_job)
+        return;
+    in.probed_i = i, in.probed_j = j, in.probed_job = v.frames.last_job;
+    try {
+        const ViewerState& s = v.state;
+        in.probe =
+            probe_pixel(s.scene, s.view, s.settings, ModuleTable::make(s.modules), i, j);
+        in.reference.reset();
+        const ModuleSelection all = ModuleSelection::all(Impl::reference);
+        if (reference_available() && s.modules.impl != all.impl) {
+            in.reference =
+                probe_pixel(s.scene, s.view, s.settings, ModuleTable::make(all), i, j);
+        }
+    } catch (const std::exception& e) {
+        in.probe.reset();
+        in.reference.reset();
+    }
+}
+
+}  // namespace raylab::viewer

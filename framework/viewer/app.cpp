@@ -1,0 +1,205 @@
+// The viewer's window and main loop (viewer/app.h), after the Dear ImGui v1.86
+// GLFW + OpenGL 3 example: Setup / Main loop / Rendering / Cleanup.
+#include "app.h"
+
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <string>
+
+#include "actions.h"
+#include "gl_image.h"
+#include "input.h"
+#include "panel.h"
+#include "viewer.h"
+
+namespace raylab::viewer {
+
+namespace {
+
+std::string glfw_last_error;
+
+void on_glfw_error(int code, const char* text) {
+    glfw_last_error = "GLFW error " + std::to_string(code) + ": " + text;
+}
+
+std::string self_path() {
+    char path[4096];
+    const ssize_t n = readlink("/proc/self/exe", path, sizeof path - 1);
+    return n > 0 ? std::string(path, static_cast<size_t>(n)) : std::string("raylab");
+}
+
+GLFWwindow* open_window(const ViewerOptions& o, const std::string& scene) {
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    const std::string title = "raylab - " + scene;
+    return glfwCreateWindow(o.window_width, o.window_height, title.c_str(), nullptr,
+                            nullptr);
+}
+
+// Sleep until something happens: a key held needs a steady frame rate, a render in
+// flight wakes us with an empty event, and nothing at all sleeps (idle CPU near zero)
+void wait_for_events(Viewer& v) {
+    if (v.options.frames > 0) {
+        if (v.worker->busy() || v.grading->running()) {
+            glfwWaitEventsTimeout(0.05);
+        } else {
+            glfwPollEvents();
+        }
+    } else if (v.extra_frames > 0) {
+        glfwPollEvents();
+    } else if (camera_keys_held(v)) {
+        glfwWaitEventsTimeout(1.0 / 60.0);
+    } else if (v.worker->busy() || v.grading->running() || v.loading.valid()) {
+        glfwWaitEventsTimeout(0.25);
+    } else {
+        glfwWaitEvents();
+    }
+    if (v.input.events) {
+        v.extra_frames = 3;  // ImGui settles hover and layout over a few frames
+        v.input.events = false;
+    } else if (v.extra_frames > 0) {
+        --v.extra_frames;
+    }
+}
+
+// --frames: count the frames that show the finished image; at the last, screenshot
+bool scripted_run_done(Viewer& v, int& exit_code) {
+    if (v.options.frames <= 0) return false;
+    const bool settled = v.frames.have_full && !v.frames.shown_preview &&
+                         !v.state.dirty && !v.worker->busy() && !v.loading.valid() &&
+                         !v.grading->running();
+    if (v.frames.failed && !v.worker->busy()) {
+        exit_code = 1;
+        return true;
+    }
+    if (!settled || ++v.frames.settled_frames < v.options.frames) return false;
+    if (!v.options.screenshot.empty()) {
+        int w = 0, h = 0;
+        glfwGetFramebufferSize(v.window, &w, &h);
+        try {
+            write_screenshot(v.options.screenshot, w, h);
+            const ImageRect& r = v.image_rect;
+            char line[256];
+            std::snprintf(
+                line, sizeof line,
+                "screenshot %s: window %dx%d, image at %.0f,%.0f size %.0fx%.0f",
+                v.options.screenshot.c_str(), w, h, r.x, r.y, r.width, r.height);
+            v.log.add(line);
+        } catch (const std::exception& e) {
+            report_error(v, e.what());
+            exit_code = 1;
+        }
+    }
+    return true;
+}
+
+// What the command line asked for at exit
+int exit_actions(Viewer& v) {
+    int code = 0;
+    if (!v.options.save_image.empty() && !save_image(v, v.options.save_image)) code = 1;
+    if (!v.options.save_view.empty() && !save_view(v, v.options.save_view)) code = 1;
+    if (!v.options.report.empty() && !save_report(v, v.options.report)) code = 1;
+    v.log.add("final view: " + view_line(v.state.view));
+    return code;
+}
+
+}  // namespace
+
+int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
+    // Setup: window and OpenGL 3.3 core context
+    glfwSetErrorCallback(on_glfw_error);
+    if (!glfwInit()) {
+        const char* display = std::getenv("DISPLAY");
+        std::fprintf(
+            stderr,
+            "raylab: error: cannot open a window: %s (%s). Render without a "
+            "window with raylab-render, or start the viewer under xvfb-run.\n",
+            display && *display ? "no usable display" : "no display, DISPLAY is not set",
+            glfw_last_error.c_str());
+        return 2;
+    }
+    auto v = std::make_unique<Viewer>();
+    v->exe_path = self_path();
+    init_viewer(*v, options, viewer_options, [] { glfwPostEmptyEvent(); });
+    v->window = open_window(viewer_options, v->state.scene_source);
+    if (!v->window) {
+        std::fprintf(stderr, "raylab: error: cannot open an OpenGL 3.3 window (%s)\n",
+                     glfw_last_error.c_str());
+        v.reset();
+        glfwTerminate();
+        return 2;
+    }
+    glfwMakeContextCurrent(v->window);
+    glfwSwapInterval(1);    // vsync where the display has it
+    install_callbacks(*v);  // before the backend, which chains them
+
+    // Setup: Dear ImGui with the GLFW and OpenGL 3 backends
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;  // no imgui.ini in the student's folder
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL(v->window, true);
+    ImGui_ImplOpenGL3_Init("#version 330 core");
+    v->texture = create_texture();
+    if (viewer_options.run_tests) run_tests(*v);
+
+    // Main loop
+    int exit_code = 0;
+    double last_time = glfwGetTime();
+    while (!glfwWindowShouldClose(v->window) && !v->quit) {
+        wait_for_events(*v);
+        finish_loading(*v);
+        poll_grading(*v);
+        take_result(*v);
+
+        // Start the Dear ImGui frame; input, panel, image
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        const double now = glfwGetTime();
+        handle_input(*v, static_cast<float>(now - last_time));
+        last_time = now;
+        draw_panel(*v);
+        draw_image(*v);
+        update_probes(*v);
+
+        // A drag ended: replace the coarse preview with the full image
+        if (!v->state.interacting && v->frames.last_job_preview) v->state.dirty = true;
+        submit_if_dirty(*v);
+        refresh_texture(*v);
+
+        // Rendering
+        ImGui::Render();
+        int width = 0, height = 0;
+        glfwGetFramebufferSize(v->window, &width, &height);
+        glViewport(0, 0, width, height);
+        glClearColor(0.12f, 0.12f, 0.13f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        if (scripted_run_done(*v, exit_code)) v->quit = true;
+        glfwSwapBuffers(v->window);
+    }
+    const int exit_status = exit_actions(*v);
+
+    // Cleanup: stop the threads (they post GLFW events) before GLFW goes
+    delete_texture(v->texture);
+    v->worker.reset();
+    v->grading.reset();
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    glfwDestroyWindow(v->window);
+    v.reset();
+    glfwTerminate();
+    return exit_code != 0 ? exit_code : exit_status;
+}
+
+}  // namespace raylab::viewer

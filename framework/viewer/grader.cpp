@@ -1,0 +1,215 @@
+// Grading in child processes (viewer/grader.h).
+#include "grader.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <regex>
+
+extern char** environ;
+
+namespace raylab::viewer {
+
+std::optional<DoctestSummary> parse_doctest_summary(std::string_view output) {
+    // The last such line wins (doctest prints one per run)
+    static const std::regex line(
+        R"(test cases:\s*(\d+)\s*\|\s*(\d+)\s*passed\s*\|\s*(\d+)\s*failed(?:\s*\|\s*(\d+)\s*skipped)?)");
+    std::optional<DoctestSummary> summary;
+    const std::string text(output);
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), line);
+         it != std::sregex_iterator(); ++it) {
+        const std::smatch& m = *it;
+        DoctestSummary s;
+        s.cases = std::stoi(m[1]);
+        s.passed = std::stoi(m[2]);
+        s.failed = std::stoi(m[3]);
+        s.skipped = m[4].matched ? std::stoi(m[4]) : 0;
+        summary = s;
+    }
+    return summary;
+}
+
+namespace {
+
+// Reads the child's output until it closes the pipe or the deadline passes
+bool read_until_eof(int fd, std::string& output, double timeout_seconds,
+                    const std::atomic<bool>* cancel) {
+    constexpr size_t kMaxOutput = size_t{1} << 20;
+    const auto deadline =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_seconds);
+    char buffer[4096];
+    for (;;) {
+        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+            deadline - std::chrono::steady_clock::now());
+        if (left.count() <= 0 || (cancel && cancel->load())) return false;
+        pollfd p{fd, POLLIN, 0};
+        const int slice = static_cast<int>(std::min<long long>(left.count(), 100));
+        const int ready = poll(&p, 1, slice);
+        if (ready == 0 || (ready < 0 && errno == EINTR)) continue;
+        if (ready < 0) return true;
+        const ssize_t n = read(fd, buffer, sizeof buffer);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return true;
+        if (output.size() < kMaxOutput) output.append(buffer, static_cast<size_t>(n));
+    }
+}
+
+}  // namespace
+
+ChildResult run_child(const std::vector<std::string>& argv,
+                      const std::vector<std::string>& env, double timeout_seconds,
+                      const std::atomic<bool>* cancel) {
+    ChildResult result;
+    // Everything the child needs is built before fork: after it, only exec
+    std::vector<char*> args;
+    for (const std::string& a : argv)
+        args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    std::vector<char*> envp;
+    for (char** e = environ; *e; ++e)
+        envp.push_back(*e);
+    for (const std::string& e : env)
+        envp.push_back(const_cast<char*>(e.c_str()));
+    envp.push_back(nullptr);
+
+    int fds[2];
+    if (argv.empty() || pipe2(fds, O_CLOEXEC) != 0) {
+        result.output = "cannot create a pipe for the child process";
+        return result;
+    }
+    const pid_t pid = fork();
+    if (pid == 0) {
+        setpgid(0, 0);
+        const int null = open("/dev/null", O_RDONLY);
+        dup2(null, 0);
+        dup2(fds[1], 1);
+        dup2(fds[1], 2);
+        execve(args[0], args.data(), envp.data());
+        const char message[] = "cannot execute the grading binary\n";
+        (void)!write(2, message, sizeof message - 1);
+        _exit(127);
+    }
+    close(fds[1]);
+    if (pid < 0) {
+        close(fds[0]);
+        result.output = std::string("fork failed: ") + std::strerror(errno);
+        return result;
+    }
+    result.started = true;
+    if (!read_until_eof(fds[0], result.output, timeout_seconds, cancel)) {
+        result.timed_out = true;
+        kill(-pid, SIGKILL);
+        kill(pid, SIGKILL);
+    }
+    close(fds[0]);
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
+    if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
+    return result;
+}
+
+ModuleGrade grade_module(const std::string& binary, const std::string& id,
+                         double timeout_seconds, const std::atomic<bool>* cancel) {
+    ModuleGrade grade;
+    const ChildResult child =
+        run_child({binary, "--test-suite=" + id}, {}, timeout_seconds, cancel);
+    grade.output = child.output;
+    const std::optional<DoctestSummary> summary = parse_doctest_summary(child.output);
+    if (summary) grade.counts = *summary;
+    if (!child.started || child.exit_code == 127) {
+        grade.status = ModuleGrade::Status::error;
+        grade.summary = "could not start the graders";
+    } else if (child.timed_out) {
+        grade.status = ModuleGrade::Status::crashed;
+        grade.summary = "timed out after " + std::to_string(int(timeout_seconds)) + " s";
+    } else if (child.signal != 0) {
+        grade.status = ModuleGrade::Status::crashed;
+        grade.summary = std::string("crashed (") + strsignal(child.signal) + ")";
+    } else if (!summary) {
+        grade.status = ModuleGrade::Status::error;
+        grade.summary =
+            "no doctest summary (exit code " + std::to_string(child.exit_code) + ")";
+    } else if (summary->cases - summary->skipped == 0) {
+        grade.status = ModuleGrade::Status::no_tests;
+        grade.summary = "no tests";
+    } else {
+        const bool all = summary->failed == 0 && child.exit_code == 0;
+        grade.status = all ? ModuleGrade::Status::passed : ModuleGrade::Status::failed;
+        grade.summary = std::to_string(summary->passed) + "/" +
+                        std::to_string(summary->cases - summary->skipped) + " passed";
+    }
+    return grade;
+}
+
+std::string find_grading_binary(const std::string& viewer_path) {
+    if (const char* env = std::getenv("RAYLAB_GRADING_TESTS"); env && *env) {
+        return access(env, X_OK) == 0 ? std::string(env) : std::string();
+    }
+    const size_t slash = viewer_path.rfind('/');
+    const std::string dir =
+        slash == std::string::npos ? "." : viewer_path.substr(0, slash);
+    const std::string path = dir + "/../../tests/grading/raylab-grading-tests";
+    return access(path.c_str(), X_OK) == 0 ? path : std::string();
+}
+
+GradingRun::~GradingRun() {
+    cancel_ = true;
+    if (thread_.joinable()) thread_.join();
+}
+
+void GradingRun::start(const std::string& binary, double timeout_seconds) {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (running_) return;
+        running_ = true;
+        for (ModuleGrade& g : grades_) {
+            g = ModuleGrade{};
+            g.status = ModuleGrade::Status::running;
+            g.summary = "waiting";
+        }
+    }
+    if (thread_.joinable()) thread_.join();
+    thread_ = std::thread([this, binary, timeout_seconds] {
+        for (const ModuleInfo& info : module_infos()) {
+            if (cancel_) break;
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                grades_[static_cast<int>(info.module)].summary = "running";
+            }
+            wake_();
+            ModuleGrade grade = grade_module(binary, info.id, timeout_seconds, &cancel_);
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                grades_[static_cast<int>(info.module)] = std::move(grade);
+            }
+            wake_();
+        }
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            running_ = false;
+        }
+        wake_();
+    });
+}
+
+bool GradingRun::running() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return running_;
+}
+
+std::array<ModuleGrade, kModuleCount> GradingRun::grades() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return grades_;
+}
+
+}  // namespace raylab::viewer

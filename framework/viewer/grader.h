@@ -1,0 +1,90 @@
+// viewer/grader.h: runs the graders of each module in a child process.
+//
+// The panel's "Run tests" starts raylab-grading-tests once per module with
+// --test-suite=NN_name and reads doctest's summary line. A child process keeps a crashing
+// or hanging student module from taking the viewer down: a crash is reported with its
+// signal, a hang is killed after a time limit.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <functional>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <thread>
+#include <vector>
+
+#include "raylab/modules.h"
+
+namespace raylab::viewer {
+
+/// doctest's closing line: "[doctest] test cases: N | P passed | F failed | S skipped".
+struct DoctestSummary {
+    int cases = 0;
+    int passed = 0;
+    int failed = 0;
+    int skipped = 0;
+};
+
+/// The test-case summary in doctest's console output, if there is one.
+std::optional<DoctestSummary> parse_doctest_summary(std::string_view output);
+
+/// How a child process ended.
+struct ChildResult {
+    bool started = false;    ///< false: it could not be started (message in output)
+    int exit_code = -1;      ///< when it exited normally
+    int signal = 0;          ///< when a signal ended it (SIGSEGV, SIGABRT, ...)
+    bool timed_out = false;  ///< killed after the time limit
+    std::string output;      ///< stdout and stderr, interleaved, at most 1 MiB
+};
+
+/// Runs argv[0] with arguments argv[1...], extra environment variables env ("NAME=value")
+/// and stdin from /dev/null; kills its process group after timeout_seconds, or as soon as
+/// *cancel turns true (reported as timed out).
+ChildResult run_child(const std::vector<std::string>& argv,
+                      const std::vector<std::string>& env, double timeout_seconds,
+                      const std::atomic<bool>* cancel = nullptr);
+
+/// One module's grading outcome.
+struct ModuleGrade {
+    enum class Status { not_run, running, passed, failed, no_tests, crashed, error };
+    Status status = Status::not_run;
+    DoctestSummary counts;
+    std::string summary;  ///< one line for the panel, e.g. "12/14 passed"
+    std::string output;   ///< the grader's console output
+};
+
+/// Grades module id with the grading binary, in a child process.
+ModuleGrade grade_module(const std::string& binary, const std::string& id,
+                         double timeout_seconds,
+                         const std::atomic<bool>* cancel = nullptr);
+
+/// The grading binary: $RAYLAB_GRADING_TESTS when set, else
+/// <viewer's directory>/../../tests/grading/raylab-grading-tests. Empty when missing.
+std::string find_grading_binary(const std::string& viewer_path);
+
+/// Grades every module in a background thread; the panel reads snapshots.
+class GradingRun {
+  public:
+    explicit GradingRun(std::function<void()> wake) : wake_(std::move(wake)) {}
+    ~GradingRun();
+    GradingRun(const GradingRun&) = delete;
+    GradingRun& operator=(const GradingRun&) = delete;
+
+    /// Starts grading all modules with binary (unless a run is under way).
+    void start(const std::string& binary, double timeout_seconds = 120.0);
+    bool running() const;
+    std::array<ModuleGrade, kModuleCount> grades() const;
+
+  private:
+    std::function<void()> wake_;
+    mutable std::mutex mutex_;
+    std::array<ModuleGrade, kModuleCount> grades_;
+    bool running_ = false;
+    std::atomic<bool> cancel_{false};  // set by the destructor: kill the child, stop
+    std::thread thread_;
+};
+
+}  // namespace raylab::viewer

@@ -1,0 +1,197 @@
+// Panel sections: module list and graders, compare view, pixel inspector
+// (viewer/panel.h).
+#include <imgui.h>
+
+#include <cstdio>
+
+#include "actions.h"
+#include "compare.h"
+#include "panel.h"
+#include "raylab/image.h"
+
+namespace raylab::viewer {
+
+namespace {
+
+const ImVec4 kGreen(0.45f, 0.9f, 0.45f, 1.0f), kRed(1.0f, 0.4f, 0.35f, 1.0f),
+    kGrey(0.6f, 0.6f, 0.6f, 1.0f);
+
+ImVec4 grade_colour(ModuleGrade::Status status) {
+    switch (status) {
+        case ModuleGrade::Status::passed:
+            return kGreen;
+        case ModuleGrade::Status::failed:
+        case ModuleGrade::Status::crashed:
+        case ModuleGrade::Status::error:
+            return kRed;
+        default:
+            return kGrey;
+    }
+}
+
+// One row: ID, student/reference switch, stub note, test result
+void module_row(Viewer& v, const ModuleInfo& info, const ModuleGrade& grade) {
+    ViewerState& s = v.state;
+    const int k = static_cast<int>(info.module);
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(info.id);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", info.title);
+    ImGui::TableNextColumn();
+    int impl = static_cast<int>(s.modules.impl[k]);
+    ImGui::PushID(k);
+    bool changed = ImGui::RadioButton("student", &impl, 0);
+    ImGui::SameLine();
+    ImGui::BeginDisabled(!reference_available());
+    changed |= ImGui::RadioButton("ref", &impl, 1);
+    ImGui::EndDisabled();
+    if (changed) {
+        s.modules.impl[k] = static_cast<Impl>(impl);
+        s.dirty = true;
+    }
+    ImGui::TableNextColumn();
+    if (s.stubs & (1u << k)) {
+        ImGui::TextColored(kGrey, "stub");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("exercises/%s.cpp is not started (RAYLAB_STUB)", info.id);
+        ImGui::SameLine();
+    }
+    if (grade.status != ModuleGrade::Status::not_run) {
+        ImGui::PushStyleColor(ImGuiCol_Text, grade_colour(grade.status));
+        if (ImGui::Selectable(grade.summary.c_str(), v.panel.grade_shown == k))
+            v.panel.grade_shown = v.panel.grade_shown == k ? -1 : k;
+        ImGui::PopStyleColor();
+    }
+    ImGui::PopID();
+}
+
+void set_all(Viewer& v, const ModuleSelection& selection) {
+    v.state.modules = selection;
+    v.state.dirty = true;
+}
+
+}  // namespace
+
+void modules_section(Viewer& v) {
+    const auto grades = v.grading->grades();
+    const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit;
+    if (ImGui::BeginTable("modules", 3, flags)) {
+        for (const ModuleInfo& info : module_infos())
+            module_row(v, info, grades[static_cast<int>(info.module)]);
+        ImGui::EndTable();
+    }
+    if (!reference_available()) {
+        ImGui::TextWrapped(
+            "Reference switch off: this build has no solutions/ "
+            "(student release).");
+    } else {
+        if (ImGui::Button("All student")) set_all(v, ModuleSelection::all(Impl::student));
+        ImGui::SameLine();
+        if (ImGui::Button("All reference"))
+            set_all(v, ModuleSelection::all(Impl::reference));
+        ImGui::SameLine();
+        if (ImGui::Button("Reference for stubs")) set_all(v, auto_selection());
+    }
+    ImGui::BeginDisabled(v.grading->running());
+    if (ImGui::Button(v.grading->running() ? "Running tests ..." : "Run tests"))
+        run_tests(v);
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::TextDisabled(v.grading_binary.empty() ? "(graders not built)"
+                                                 : "(student code, child process)");
+    const int shown = v.panel.grade_shown;
+    if (shown >= 0 && !grades[shown].output.empty()) {
+        ImGui::TextDisabled("grader output of %s (click its result to hide):",
+                            module_infos()[shown].id);
+        ImGui::BeginChild("grader output", ImVec2(0.0f, 180.0f), true,
+                          ImGuiWindowFlags_HorizontalScrollbar);
+        ImGui::TextUnformatted(grades[shown].output.c_str());
+        ImGui::EndChild();
+    }
+}
+
+void compare_section(Viewer& v) {
+    ViewerState& s = v.state;
+    if (!reference_available()) {
+        ImGui::TextWrapped("Needs the reference solutions; this build has none.");
+        return;
+    }
+    if (ImGui::Checkbox("compare with the full reference", &s.compare)) {
+        s.dirty = true;
+        s.retone = true;
+    }
+    if (!s.compare) return;
+    if (ImGui::Checkbox("show the difference heat map", &s.show_difference))
+        s.retone = true;
+    const std::optional<Difference>& d = v.frames.difference;
+    if (!d) {
+        ImGui::TextDisabled("computed with the next full frame ...");
+        return;
+    }
+    if (s.modules.impl == ModuleSelection::all(Impl::reference).impl)
+        ImGui::TextDisabled("all modules run the reference: nothing differs");
+    ImGui::Text("RMSE %.4g   max error %.4g", d->rmse, d->max_error);
+    ImGui::Text("%llu of %d pixels differ (> 1e-4)",
+                static_cast<unsigned long long>(d->differing), d->width * d->height);
+    if (d->non_finite > 0)
+        ImGui::TextColored(kRed, "%llu NaN/Inf pixels (magenta)",
+                           static_cast<unsigned long long>(d->non_finite));
+    // Legend: the heat ramp from 0 to the max error
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    const float w = ImGui::GetContentRegionAvail().x, h = 12.0f;
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    for (int x = 0; x < int(w); ++x) {
+        std::uint8_t rgb[3];
+        heat_colour(float(x) / w, rgb);
+        draw->AddRectFilled(ImVec2(p.x + x, p.y), ImVec2(p.x + x + 1, p.y + h),
+                            IM_COL32(rgb[0], rgb[1], rgb[2], 255));
+    }
+    ImGui::Dummy(ImVec2(w, h));
+    ImGui::Text("0");
+    ImGui::SameLine(w - 80.0f);
+    ImGui::Text("%.3g", d->max_error);
+    ImGui::TextDisabled("linear radiance, largest channel error per pixel");
+}
+
+void probe_lines(const Viewer& v) {
+    const InspectorState& in = v.inspector;
+    if (!in.probe) {
+        ImGui::TextDisabled("hover the image; right click pins a pixel");
+        return;
+    }
+    const PixelProbe& p = *in.probe;
+    const int i = in.pinned ? in.pin_i : in.i, j = in.pinned ? in.pin_j : in.j;
+    ImGui::Text("pixel (%d, %d)%s  uv (%.4f, %.4f)", i, j, in.pinned ? " pinned" : "",
+                p.uv.x, p.uv.y);
+    ImGui::Text("ray o (%.3f, %.3f, %.3f)", p.ray.o.x, p.ray.o.y, p.ray.o.z);
+    ImGui::Text("    w (%.4f, %.4f, %.4f)", p.ray.w.x, p.ray.w.y, p.ray.w.z);
+    if (p.hit) {
+        const Hit& h = *p.hit;
+        const std::string& material = v.state.scene.materials[h.material].name;
+        ImGui::Text("hit t = %.5f  material %s", h.t, material.c_str());
+        ImGui::Text("position (%.3f, %.3f, %.3f)", h.position.x, h.position.y,
+                    h.position.z);
+        ImGui::Text("normal n (%.3f, %.3f, %.3f)", h.n.x, h.n.y, h.n.z);
+        ImGui::Text("shading ns (%.3f, %.3f, %.3f)", h.ns.x, h.ns.y, h.ns.z);
+    } else {
+        ImGui::Text("no hit: background");
+    }
+    ImGui::Text("radiance L (%.4f, %.4f, %.4f)", p.L.x, p.L.y, p.L.z);
+    if (in.reference) {
+        const PixelProbe& r = *in.reference;
+        ImGui::TextColored(kGrey, "reference: %s t = %.5f, L (%.4f, %.4f, %.4f)",
+                           r.hit ? "hit" : "miss", r.hit ? r.hit->t : 0.0f, r.L.x, r.L.y,
+                           r.L.z);
+    }
+}
+
+void inspector_section(Viewer& v) {
+    ImGui::Checkbox("tooltip over the image", &v.state.inspector);
+    if (v.inspector.pinned) {
+        ImGui::SameLine();
+        if (ImGui::SmallButton("Unpin")) v.inspector.pinned = false;
+    }
+    probe_lines(v);
+}
+
+}  // namespace raylab::viewer

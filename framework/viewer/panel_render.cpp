@@ -1,0 +1,181 @@
+// Panel sections: rendering settings, frame statistics, files, log (viewer/panel.h).
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <thread>
+
+#include "actions.h"
+#include "panel.h"
+#include "raylab/error.h"
+
+namespace raylab::viewer {
+
+namespace {
+
+constexpr int kSizes[][2] = {{160, 120}, {320, 240},  {640, 480},
+                             {800, 600}, {1280, 720}, {1920, 1080}};
+
+void resolution(Viewer& v) {
+    RenderSettings& settings = v.state.settings;
+    char current[32];
+    std::snprintf(current, sizeof current, "%d x %d", settings.width, settings.height);
+    if (ImGui::BeginCombo("resolution", current)) {
+        for (const auto& size : kSizes) {
+            char label[32];
+            std::snprintf(label, sizeof label, "%d x %d", size[0], size[1]);
+            const bool now = size[0] == settings.width && size[1] == settings.height;
+            if (ImGui::Selectable(label, now)) {
+                v.panel.size_edit[0] = size[0];
+                v.panel.size_edit[1] = size[1];
+                settings.width = size[0];
+                settings.height = size[1];
+                v.state.dirty = true;
+            }
+        }
+        ImGui::EndCombo();
+    }
+    const bool enter = ImGui::InputInt2("W x H (Enter)", v.panel.size_edit,
+                                        ImGuiInputTextFlags_EnterReturnsTrue);
+    if (enter || ImGui::IsItemDeactivatedAfterEdit()) {
+        RenderSettings wanted = settings;
+        wanted.width = v.panel.size_edit[0];
+        wanted.height = v.panel.size_edit[1];
+        try {
+            validate(wanted);
+            settings = wanted;
+            v.state.dirty = true;
+        } catch (const Error& e) {
+            report_error(v, std::string(e.what()) + ": not applied");
+            v.panel.size_edit[0] = settings.width;
+            v.panel.size_edit[1] = settings.height;
+        }
+    }
+}
+
+void stat_row(const char* name, unsigned long long value) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(name);
+    ImGui::TableNextColumn();
+    ImGui::Text("%llu", value);
+}
+
+}  // namespace
+
+void rendering_section(Viewer& v) {
+    ViewerState& s = v.state;
+    resolution(v);
+    const char* modes[] = {"Lambert (lit)", "normals", "base colour (rho)", "depth (t)"};
+    int mode = static_cast<int>(s.settings.mode);
+    if (ImGui::Combo("shading", &mode, modes, 4)) {
+        s.settings.mode = static_cast<ShadingMode>(mode);
+        s.dirty = true;
+    }
+    if (ImGui::Checkbox("shadows", &s.settings.shadows)) s.dirty = true;
+    ImGui::SameLine();
+    const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
+    ImGui::SetNextItemWidth(120.0f);
+    if (ImGui::SliderInt("threads (0: all)", &s.settings.threads, 0, cores))
+        s.dirty = true;
+    if (ImGui::SliderFloat("exposure [EV]", &s.exposure, -6.0f, 6.0f, "%+.1f"))
+        s.retone = true;  // tone mapping only: no new render
+    int scale = s.image_scale;
+    ImGui::RadioButton("fit window", &scale, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("1:1", &scale, 1);
+    ImGui::SameLine();
+    ImGui::RadioButton("2:1", &scale, 2);
+    s.image_scale = scale;
+}
+
+void frame_overlay(Viewer& v) {
+    const FrameState& f = v.frames;
+    const ImageRect& r = v.image_rect;
+    const ImGuiIO& io = ImGui::GetIO();
+    const float width = 300.0f;
+    ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - width - 8.0f, 8.0f),
+                            ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(width, 0.0f), ImGuiCond_Always);
+    ImGui::SetNextWindowBgAlpha(0.6f);
+    const ImGuiWindowFlags flags =
+        ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+        ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+        ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
+    (void)r;
+    ImGui::Begin("frame", nullptr, flags);
+    if (f.history_ms.empty()) {
+        ImGui::TextUnformatted(v.worker->busy() ? "rendering the first frame ..."
+                                                : "no frame yet");
+        ImGui::End();
+        return;
+    }
+    ImGui::Text("%.2f ms  %s %dx%d%s", f.last.milliseconds,
+                f.shown_preview ? "preview" : "full", f.shown.width, f.shown.height,
+                v.worker->busy() ? "  (rendering)" : "");
+    ImGui::Text("%.2f Mrays/s on %d threads", f.last.rays_per_second() * 1e-6,
+                f.last.threads);
+    const float top = *std::max_element(f.history_ms.begin(), f.history_ms.end());
+    char overlay[64];
+    std::snprintf(overlay, sizeof overlay, "render time [ms], max %.1f", top);
+    ImGui::PlotLines("##history", f.history_ms.data(), int(f.history_ms.size()), 0,
+                     overlay, 0.0f, top * 1.1f, ImVec2(-1.0f, 50.0f));
+    ImGui::End();
+}
+
+void stats_section(Viewer& v) {
+    const FrameState& f = v.frames;
+    if (f.history_ms.empty()) {
+        ImGui::TextDisabled("no frame yet");
+        return;
+    }
+    const FrameStats& st = f.last;
+    ImGui::Text("last frame: %.2f ms, %s %dx%d", st.milliseconds,
+                f.shown_preview ? "preview" : "full", f.shown.width, f.shown.height);
+    if (f.have_full) ImGui::Text("last full frame: %.2f ms", f.last_full.milliseconds);
+    ImGui::Text("%.2f Mrays/s on %d threads", st.rays_per_second() * 1e-6, st.threads);
+    if (ImGui::BeginTable("stats", 2,
+                          ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
+        stat_row("camera rays", st.camera_rays);
+        stat_row("shadow rays", st.shadow_rays);
+        stat_row("skipped: light behind surface", st.shadow_rays_backfacing);
+        stat_row("skipped: shadows off", st.shadow_rays_disabled);
+        stat_row("intersection tests", st.intersection_tests);
+        stat_row("BVH nodes visited", st.bvh_nodes);
+        ImGui::EndTable();
+    }
+    if (st.non_finite_pixels > 0) {
+        ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1.0f), "%llu NaN/Inf pixels (black)",
+                           static_cast<unsigned long long>(st.non_finite_pixels));
+    }
+}
+
+void files_section(Viewer& v) {
+    PanelState& p = v.panel;
+    ImGui::InputText("##image", &p.image_path);
+    ImGui::SameLine();
+    if (ImGui::Button("Save image")) save_image(v, p.image_path);
+    ImGui::InputText("##view", &p.view_path);
+    ImGui::SameLine();
+    if (ImGui::Button("Save view")) save_view(v, p.view_path);
+    ImGui::SameLine();
+    if (ImGui::Button("Load")) load_view(v, p.view_path);
+    ImGui::InputText("##report", &p.report_dir);
+    ImGui::SameLine();
+    if (ImGui::Button("Save report")) {
+        if (save_report(v, p.report_dir)) p.report_dir = default_report_dir();
+    }
+    ImGui::TextDisabled("report: view, settings, image and log in one folder");
+}
+
+void log_section(Viewer& v) {
+    ImGui::BeginChild("log", ImVec2(0.0f, 160.0f), true,
+                      ImGuiWindowFlags_HorizontalScrollbar);
+    for (const std::string& line : v.log.lines())
+        ImGui::TextUnformatted(line.c_str());
+    if (ImGui::GetScrollY() >= ImGui::GetScrollMaxY()) ImGui::SetScrollHereY(1.0f);
+    ImGui::EndChild();
+}
+
+}  // namespace raylab::viewer

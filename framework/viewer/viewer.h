@@ -1,0 +1,134 @@
+// viewer/viewer.h: the viewer's state, one plain struct of plain parts.
+//
+// STYLE.md rule 13: the panel edits ViewerState, the renderer reads it, and a widget
+// that returns true marks it dirty. The main loop (app.cpp) draws the panel
+// (panel_*.cpp), handles keys and the mouse (input.cpp), shows the image
+// (image_view.cpp) and sends a job to the background renderer when something changed
+// (actions.cpp).
+#pragma once
+
+#include <cstdint>
+#include <future>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "grader.h"
+#include "log.h"
+#include "raylab/renderer.h"
+#include "raylab/scene.h"
+#include "render_worker.h"
+#include "viewer_options.h"
+
+struct GLFWwindow;
+
+namespace raylab::viewer {
+
+/// What the panel edits and the renderer reads.
+struct ViewerState {
+    Scene scene;  ///< geometry, lights, ambient (main thread's copy)
+    std::string scene_source = "cornell";  ///< "cornell", "dtu" or the OBJ path
+    std::uint64_t scene_version = 1;       ///< bumped whenever the geometry changes
+    std::uint64_t sent_version = 0;        ///< the version the worker has
+    View view;
+    int selected_light = 0;  ///< the light W/A/S/D/Q/E move
+    RenderSettings settings;
+    float exposure = 0.0f;  ///< stops
+    ModuleSelection modules;
+    std::uint32_t stubs = 0;      ///< bit k: module k + 1 is still a stub
+    bool compare = false;         ///< render the reference too and compare
+    bool show_difference = true;  ///< with compare: show the heat map, not the image
+    bool inspector = true;        ///< tooltip of the pixel under the mouse
+    int image_scale = 0;          ///< window pixels per image pixel; 0: fit
+    bool dirty = true;            ///< the image is out of date: render again
+    bool interacting = false;     ///< a value is being dragged: coarse previews
+    bool retone = true;           ///< the texture is out of date: upload again
+};
+
+/// The panel's text fields and messages.
+struct PanelState {
+    std::string obj_path;
+    std::string view_path = "view.txt";
+    std::string image_path = "raylab.png";
+    std::string report_dir;
+    std::string error;       ///< shown in red until the next successful action
+    View view_edit;          ///< the camera fields; applied only when valid
+    std::string view_error;  ///< why view_edit is not applied
+    int size_edit[2] = {640, 480};
+    int scene_choice = 0;  ///< index into builtin_scene_names()
+    int grade_shown = -1;  ///< module whose grader output is shown; -1: none
+};
+
+/// The frames the renderer sent back.
+struct FrameState {
+    Image shown;  ///< newest image, preview or full
+    bool shown_preview = false;
+    Image full;  ///< newest full-size image (save, report)
+    bool have_full = false;
+    FrameStats last;                ///< of shown
+    FrameStats last_full;           ///< of full
+    std::vector<float> history_ms;  ///< render times, oldest first
+    std::optional<Difference> difference;
+    std::uint64_t next_job = 1;
+    std::uint64_t last_job = 0;  ///< the newest job submitted
+    bool last_job_preview = false;
+    int full_frames = 0;     ///< full frames received
+    bool failed = false;     ///< the newest frame failed to render
+    int settled_frames = 0;  ///< frames drawn with the finished image (--frames)
+};
+
+/// The pixel inspector: the pixel under the mouse, and a pinned one.
+struct InspectorState {
+    bool hovering = false;
+    int i = 0, j = 0;  ///< full-size pixel under the mouse
+    bool pinned = false;
+    int pin_i = 0, pin_j = 0;
+    std::optional<PixelProbe> probe, reference;  ///< of the pinned (else hovered) pixel
+    std::uint64_t probed_job = 0;                ///< the frame the probes belong to
+    int probed_i = -1, probed_j = -1;
+};
+
+/// Keys and mouse between frames (input.cpp).
+struct InputState {
+    bool events = false;       ///< any input since the last frame
+    bool tapped[512] = {};     ///< pressed since the last frame (quick taps count)
+    bool mouse_moved = false;  ///< the pointer moved since the window opened
+    double first_x = -1, first_y = -1;  ///< where the pointer was first seen
+    bool dragging = false;              ///< orbiting with the left button
+    double drag_x = 0, drag_y = 0;
+    double wheel = 0;  ///< scroll since the last frame, over the image
+};
+
+/// Where the image is drawn, in window coordinates.
+struct ImageRect {
+    float x = 0, y = 0, width = 0, height = 0;
+};
+
+struct Viewer {
+    GLFWwindow* window = nullptr;
+    std::string exe_path;  ///< /proc/self/exe, to find the graders
+    ViewerOptions options;
+    ViewerState state;
+    PanelState panel;
+    FrameState frames;
+    InspectorState inspector;
+    InputState input;
+    ImageRect image_rect;
+    Log log;
+    std::unique_ptr<RenderWorker> worker;
+    std::unique_ptr<GradingRun> grading;
+    std::string grading_binary;  ///< empty: not built
+    bool grading_logged = true;  ///< the last run's results are in the log
+    std::future<Scene> loading;  ///< an OBJ being loaded in the background
+    std::string loading_source;
+    unsigned texture = 0;   ///< GL texture of the shown image or heat map
+    int texture_width = 0;  ///< 0: nothing uploaded yet
+    int texture_height = 0;
+    bool texture_is_heat = false;  ///< the texture shows the difference heat map
+    float panel_width = 430.0f;
+    int extra_frames = 2;  ///< frames to draw before sleeping (ImGui settles)
+    bool quit = false;
+};
+
+}  // namespace raylab::viewer

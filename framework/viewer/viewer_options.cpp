@@ -1,0 +1,95 @@
+// The viewer's own flags (viewer/viewer_options.h).
+#include "viewer_options.h"
+
+#include <cstdlib>
+
+#include "raylab/error.h"
+
+namespace raylab::viewer {
+
+namespace {
+
+bool is_flag(const std::string& word) {
+    return word.rfind("--", 0) == 0;
+}
+
+int parse_count(const std::string& flag, const std::string& text, int lo, int hi) {
+    char* end = nullptr;
+    const long x = std::strtol(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || x < lo || x > hi) {
+        throw Error(flag + ": '" + text + "' is not a whole number in " +
+                    std::to_string(lo) + ".." + std::to_string(hi));
+    }
+    return static_cast<int>(x);
+}
+
+void parse_window(const std::string& text, ViewerOptions& o) {
+    const size_t x = text.find('x');
+    if (x == std::string::npos) throw Error("--window: '" + text + "' is not WxH");
+    o.window_width = parse_count("--window", text.substr(0, x), 320, 8192);
+    o.window_height = parse_count("--window", text.substr(x + 1), 240, 8192);
+}
+
+}  // namespace
+
+ViewerOptions parse_viewer_options(const std::vector<std::string>& extra) {
+    ViewerOptions o;
+    for (size_t k = 0; k < extra.size(); ++k) {
+        const std::string& flag = extra[k];
+        const bool has_value = k + 1 < extra.size() && !is_flag(extra[k + 1]);
+        const auto value = [&]() -> std::string {
+            if (!has_value) throw Error(flag + " needs a value (see --help)");
+            return extra[++k];
+        };
+        const auto no_value = [&]() {
+            if (has_value)
+                throw Error(flag + " takes no value, got '" + extra[k + 1] + "'");
+        };
+        if (flag == "--frames") {
+            o.frames = parse_count(flag, value(), 1, 1000000);
+        } else if (flag == "--screenshot") {
+            o.screenshot = value();
+        } else if (flag == "--save-image") {
+            o.save_image = value();
+        } else if (flag == "--save-view") {
+            o.save_view = value();
+        } else if (flag == "--load-view") {
+            o.load_view = value();
+        } else if (flag == "--report") {
+            o.report = value();
+        } else if (flag == "--window") {
+            parse_window(value(), o);
+        } else if (flag == "--image-scale") {
+            o.image_scale = parse_count(flag, value(), 0, 16);
+        } else if (flag == "--compare") {
+            no_value();
+            o.compare = true;
+        } else if (flag == "--run-tests") {
+            no_value();
+            o.run_tests = true;
+        } else {
+            throw Error("unknown option '" + flag + "' (see --help)");
+        }
+    }
+    if (!o.screenshot.empty() && o.frames == 0) o.frames = 3;
+    return o;
+}
+
+std::string viewer_options_help() {
+    return R"(Viewer:
+  --window WxH          window size (default 1280x800)
+  --image-scale S       window pixels per image pixel (default 0: fit the window)
+  --compare             start with the difference to the reference shown
+  --run-tests           run the graders of every module at start
+  --load-view FILE      camera and lights from a view file (see docs/viewer.md)
+Scripted runs (CI):
+  --frames N            quit after N frames of the finished full-size image
+  --screenshot FILE     write the window as FILE.png at the last frame (implies
+                        --frames 3 unless given)
+  --save-image FILE     write the rendered image (.png or .pfm) at exit
+  --save-view FILE      write camera and lights at exit
+  --report DIR          write a bug-report folder (view, settings, image, log) at exit
+)";
+}
+
+}  // namespace raylab::viewer
