@@ -113,6 +113,11 @@ int exit_actions(Viewer& v) {
 }  // namespace
 
 int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
+    // Setup: flags and files first, so that their errors come before any window
+    auto v = std::make_unique<Viewer>();
+    v->exe_path = self_path();
+    init_viewer(*v, options, viewer_options, [] { glfwPostEmptyEvent(); });
+
     // Setup: window and OpenGL 3.3 core context
     glfwSetErrorCallback(on_glfw_error);
     if (!glfwInit()) {
@@ -125,9 +130,6 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
             glfw_last_error.c_str());
         return 2;
     }
-    auto v = std::make_unique<Viewer>();
-    v->exe_path = self_path();
-    init_viewer(*v, options, viewer_options, [] { glfwPostEmptyEvent(); });
     v->window = open_window(viewer_options, v->state.scene_source);
     if (!v->window) {
         std::fprintf(stderr, "raylab: error: cannot open an OpenGL 3.3 window (%s)\n",
@@ -156,6 +158,7 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
     double last_time = glfwGetTime();
     while (!glfwWindowShouldClose(v->window) && !v->quit) {
         wait_for_events(*v);
+        if (v->quit) break;
         finish_loading(*v);
         poll_grading(*v);
         take_result(*v);

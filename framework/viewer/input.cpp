@@ -25,9 +25,11 @@ Viewer& viewer_of(GLFWwindow* window) {
 void on_key(GLFWwindow* window, int key, int, int action, int mods) {
     Viewer& v = viewer_of(window);
     v.input.events = true;
-    if (action == GLFW_PRESS && key >= 0 && key < 512) v.input.tapped[key] = true;
-    if (action == GLFW_PRESS && key == GLFW_KEY_Q && (mods & GLFW_MOD_CONTROL))
-        v.quit = true;
+    // Ctrl+Q quits; its Q is no light key, even when Ctrl is up again by the next frame
+    const bool ctrl = (mods & GLFW_MOD_CONTROL) != 0;
+    if (action == GLFW_PRESS && key == GLFW_KEY_Q && ctrl) v.quit = true;
+    if (action == GLFW_PRESS && !ctrl && key >= 0 && key < 512)
+        v.input.tapped[key] = true;
 }
 
 void on_event(GLFWwindow* window) {

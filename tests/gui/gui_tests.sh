@@ -1,0 +1,129 @@
+#!/usr/bin/env bash
+# GUI tests of the viewer under Xvfb (Mesa software GL), driven by ctest (LABELS gui).
+#
+#   gui_tests.sh CASE VIEWER RENDER PNG_DIFF WORKDIR
+#
+# Cases:
+#   screenshot   the viewer's saved image equals raylab-render's for the same flags, and
+#                the image region of its window screenshot matches within 2 of 255
+#   keys         arrow keys walk, W moves the light, a drag orbits (read from --save-view)
+#   focus        keys typed into a panel text field move nothing
+#   run-tests    "Run tests" grades in child processes (a fake grader crashes in one
+#                module) and --report writes the folder
+#   no-display   without DISPLAY: exit code 2 and a one-line message, no crash
+# Exit 77 (ctest: skipped) when xvfb-run or xdotool is missing.
+set -u
+case_name=$1 viewer=$2 render=$3 png_diff=$4 work=$5
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
+xvfb() { xvfb-run -a -s '-screen 0 1280x800x24' "$@"; }
+fail() { echo "FAIL: $*"; exit 1; }
+need() { command -v "$1" > /dev/null || { echo "SKIP: $1 not installed"; exit 77; }; }
+
+# The value of KEY (eye, lookat, light) in a view file, as "x y z" (light: position)
+field() { awk -v k="$2" '$1 == k { print $2, $3, $4; exit }' "$1"; }
+
+# Starts the viewer in the background under one Xvfb, runs the xdotool steps in $1,
+# quits with Ctrl+Q and waits; the view ends in view.txt, the output in out.txt
+drive() {
+    local steps=$1; shift
+    xvfb bash -c '
+        viewer=$1 steps=$2; shift 2
+        "$viewer" --save-view view.txt "$@" > out.txt 2>&1 &
+        pid=$!
+        for _ in $(seq 600); do grep -q "^rendered" out.txt && break; sleep 0.1; done
+        wid=$(xdotool search --sync --onlyvisible --name "^raylab - " | head -n 1)
+        xdotool windowfocus --sync "$wid" 2> /dev/null || true
+        eval "$steps"
+        xdotool key --window "$wid" ctrl+q
+        wait $pid' _ "$viewer" "$steps" "$@"
+}
+
+flags=(--scene cornell --width 320 --height 240 --eye 0.4,0.3,2.8 --fov 60)
+case $case_name in
+screenshot)
+    need xvfb-run
+    "$render" "${flags[@]}" --output render.png > render.txt || fail "raylab-render failed"
+    xvfb "$viewer" "${flags[@]}" --image-scale 1 --window 1000x600 --frames 3 \
+        --screenshot shot.png --save-image saved.png > out.txt 2>&1 ||
+        { cat out.txt; fail "the viewer failed"; }
+    cat out.txt
+    # "screenshot shot.png: window 1000x600, image at X,Y size WxH"
+    read -r x y w h < <(sed -n 's/.*image at \([0-9]*\),\([0-9]*\) size \([0-9]*\)x\([0-9]*\).*/\1 \2 \3 \4/p' out.txt)
+    [ "${w:-}" = 320 ] && [ "${h:-}" = 240 ] || fail "image region not 320x240: '$x $y $w $h'"
+    "$png_diff" saved.png render.png --tolerance 0 || fail "saved image differs from raylab-render"
+    "$png_diff" shot.png render.png --crop "$x,$y,$w,$h" --tolerance 2 ||
+        fail "window region differs from raylab-render"
+    ;;
+keys)
+    need xvfb-run; need xdotool
+    # Hold Up (walk), W (light forward), then drag right over the image (orbit)
+    drive 'xdotool mousemove --window "$wid" 900 300
+           xdotool keydown Up; sleep 0.4; xdotool keyup Up
+           xdotool keydown w; sleep 0.4; xdotool keyup w
+           xdotool mousedown 1; for s in 1 2 3 4 5 6; do xdotool mousemove_relative 10 0; sleep 0.05; done
+           xdotool mouseup 1; sleep 0.2' --width 160 --height 120 ||
+        { cat out.txt; fail "the viewer failed"; }
+    cat out.txt view.txt
+    read -r ex ey ez < <(field view.txt eye)
+    read -r lx ly lz < <(field view.txt lookat)
+    read -r px py pz < <(field view.txt light)
+    # Start: eye (0,0,3), look-at 0, light (0,0.5,0.7). Walking moves the look-at to
+    # z < 0 (the eye too, but the orbit then moves it); the orbit swings the eye
+    # sideways at the same distance 3; W moves the light towards -z
+    awk -v lz="$lz" 'BEGIN { exit !(lz < -0.01) }' || fail "Up did not walk: lookat z = $lz"
+    awk -v ex="$ex" 'BEGIN { exit !(ex > 0.01 || ex < -0.01) }' || fail "drag did not orbit: eye x = $ex"
+    awk -v ex="$ex" -v ey="$ey" -v ez="$ez" -v lx="$lx" -v ly="$ly" -v lz="$lz" \
+        'BEGIN { d = sqrt((ex-lx)^2 + (ey-ly)^2 + (ez-lz)^2); exit !(d > 2.999 && d < 3.001) }' ||
+        fail "orbit changed the distance"
+    awk -v pz="$pz" 'BEGIN { exit !(pz < 0.69) }' || fail "W did not move the light: z = $pz"
+    awk -v py="$py" 'BEGIN { exit !(py > 0.4999 && py < 0.5001) }' || fail "W moved the light up"
+    ;;
+focus)
+    need xvfb-run; need xdotool
+    # Click into the OBJ path field (top of the panel), then hold Up and type "wasd"
+    drive 'xdotool mousemove --window "$wid" 120 82 click 1; sleep 0.2
+           xdotool keydown Up; sleep 0.4; xdotool keyup Up
+           xdotool type --delay 50 wasd; sleep 0.2' --width 160 --height 120 ||
+        { cat out.txt; fail "the viewer failed"; }
+    cat out.txt view.txt
+    [ "$(field view.txt eye)" = "0 0 3" ] || fail "keys moved the camera while a field had focus"
+    [ "$(field view.txt light)" = "0 0.5 0.699999988" ] ||
+        fail "keys moved the light while a field had focus: $(field view.txt light)"
+    ;;
+run-tests)
+    need xvfb-run
+    cat > fake-grader.sh << 'SH'
+#!/bin/sh
+case "$1" in
+--test-suite=05_triangle) kill -SEGV $$;;
+*) echo '[doctest] test cases: 3 | 2 passed | 1 failed | 0 skipped'; exit 1;;
+esac
+SH
+    chmod +x fake-grader.sh
+    RAYLAB_GRADING_TESTS=$PWD/fake-grader.sh xvfb "$viewer" --width 64 --height 48 \
+        --run-tests --frames 2 --report report > out.txt 2>&1 ||
+        { cat out.txt; fail "the viewer failed"; }
+    cat out.txt
+    grep -q "05_triangle .*crashed" out.txt || fail "no crash reported for 05_triangle"
+    grep -q "04_sphere .*2/3 passed" out.txt || fail "no result for 04_sphere"
+    for f in view.txt settings.txt image.png log.txt; do
+        [ -s "report/$f" ] || fail "report/$f missing"
+    done
+    grep -q "raylab-render --scene cornell" report/settings.txt || fail "no command in report"
+    ;;
+no-display)
+    env -u DISPLAY -u WAYLAND_DISPLAY "$viewer" --frames 1 > out.txt 2> err.txt
+    code=$?
+    cat err.txt
+    [ "$code" = 2 ] || fail "exit code $code, expected 2"
+    [ "$(wc -l < err.txt)" = 1 ] || fail "expected one line on stderr"
+    grep -q "cannot open a window" err.txt || fail "no clear message"
+    # Bad flags and files are named, before any window
+    "$viewer" --load-view /no/such/view.txt 2> err.txt
+    [ $? = 2 ] && grep -q "/no/such/view.txt: cannot open" err.txt || fail "bad view file"
+    "$viewer" --frames x 2> err.txt
+    [ $? = 2 ] && grep -q "frames: 'x'" err.txt || fail "bad --frames"
+    ;;
+*) fail "unknown case $case_name" ;;
+esac
+echo "PASS: $case_name"

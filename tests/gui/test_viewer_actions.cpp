@@ -1,0 +1,249 @@
+// The viewer's actions without a window: graders in child processes, reports, the
+// background renderer and the panel's error handling.
+#include <doctest/doctest.h>
+
+#include <condition_variable>
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+
+#include "actions.h"
+#include "grader.h"
+#include "raylab/error.h"
+#include "raylab/options.h"
+#include "report.h"
+
+using namespace raylab;
+using namespace raylab::viewer;
+
+namespace {
+
+std::string temp_dir(const std::string& name) {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("raylab-viewer-tests-" + name);
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir.string();
+}
+
+// A stand-in for raylab-grading-tests: a shell script that passes 03_plane, fails one
+// case of 04_sphere and crashes in 05_triangle
+std::string fake_grader() {
+    const std::string path = temp_dir("grader") + "/fake-grader.sh";
+    std::ofstream(path)
+        << "#!/bin/sh\n"
+           "case \"$1\" in\n"
+           "--test-suite=03_plane) echo '[doctest] test cases: 4 | 4 "
+           "passed | 0 failed | 0 skipped'; exit 0;;\n"
+           "--test-suite=04_sphere) echo 'CHECK( t == 2 ) is NOT correct!'; "
+           "echo '[doctest] test cases:  5 |  4 passed | 1 failed | 0 "
+           "skipped'; exit 1;;\n"
+           "--test-suite=05_triangle) kill -SEGV $$;;\n"
+           "*) echo 'not a doctest binary'; exit 0;;\n"
+           "esac\n";
+    std::filesystem::permissions(path, std::filesystem::perms::owner_all);
+    return path;
+}
+
+Options parse(std::vector<const char*> args) {
+    args.insert(args.begin(), "raylab");
+    return parse_options(int(args.size()), args.data(), true);
+}
+
+// A viewer without a window whose worker signals results through a condition variable
+struct Headless {
+    std::mutex mutex;
+    std::condition_variable cv;
+    int wakes = 0;
+    Viewer v;
+
+    explicit Headless(const Options& options) {
+        v.log.echo = false;
+        init_viewer(v, options, ViewerOptions{}, [this] {
+            std::lock_guard<std::mutex> lock(mutex);
+            ++wakes;
+            cv.notify_all();
+        });
+    }
+    // Submits the state and waits for the worker's answer (no time limit: no timing)
+    void render() {
+        submit_if_dirty(v);
+        for (;;) {
+            {
+                std::unique_lock<std::mutex> lock(mutex);
+                cv.wait(lock, [this] { return wakes > 0; });
+                wakes = 0;
+            }
+            if (take_result(v) && !v.worker->busy()) return;
+        }
+    }
+};
+
+}  // namespace
+
+TEST_SUITE("viewer") {
+    TEST_CASE("doctest's summary line is read, with and without padding") {
+        const auto s = parse_doctest_summary(
+            "[doctest] doctest version is \"2.4.9\"\n"
+            "[doctest] test cases:  14 |  12 passed | 2 failed | 1 skipped\n"
+            "[doctest] assertions: 80 | 78 passed | 2 failed |\n");
+        REQUIRE(s);
+        CHECK(s->cases == 14);
+        CHECK(s->passed == 12);
+        CHECK(s->failed == 2);
+        CHECK(s->skipped == 1);
+        CHECK_FALSE(parse_doctest_summary("Segmentation fault"));
+    }
+
+    TEST_CASE("a child process reports exit codes, signals and time-outs") {
+        const ChildResult ok =
+            run_child({"/bin/sh", "-c", "echo hello; exit 3"}, {}, 30.0);
+        CHECK(ok.started);
+        CHECK(ok.exit_code == 3);
+        CHECK(ok.output == "hello\n");
+        const ChildResult env =
+            run_child({"/bin/sh", "-c", "echo $RAYLAB_X"}, {"RAYLAB_X=7"}, 30.0);
+        CHECK(env.output == "7\n");
+        const ChildResult crash = run_child({"/bin/sh", "-c", "kill -SEGV $$"}, {}, 30.0);
+        CHECK(crash.signal == SIGSEGV);
+        // A hang is killed (the limit is short; the check is that it was killed)
+        const ChildResult hang = run_child({"/bin/sh", "-c", "sleep 30"}, {}, 0.3);
+        CHECK(hang.timed_out);
+        CHECK(hang.signal == SIGKILL);
+        const ChildResult missing = run_child({"/no/such/binary"}, {}, 30.0);
+        CHECK(missing.exit_code == 127);
+    }
+
+    TEST_CASE("graders that pass, fail or crash are told apart") {
+        const std::string grader = fake_grader();
+        const ModuleGrade plane = grade_module(grader, "03_plane", 30.0);
+        CHECK(plane.status == ModuleGrade::Status::passed);
+        CHECK(plane.summary == "4/4 passed");
+        const ModuleGrade sphere = grade_module(grader, "04_sphere", 30.0);
+        CHECK(sphere.status == ModuleGrade::Status::failed);
+        CHECK(sphere.summary == "4/5 passed");
+        CHECK(sphere.output.find("NOT correct") != std::string::npos);
+        const ModuleGrade triangle = grade_module(grader, "05_triangle", 30.0);
+        CHECK(triangle.status == ModuleGrade::Status::crashed);
+        CHECK(triangle.summary.rfind("crashed (", 0) == 0);
+        const ModuleGrade other = grade_module(grader, "01_pixel_loop", 30.0);
+        CHECK(other.status == ModuleGrade::Status::error);
+    }
+
+    TEST_CASE("RAYLAB_GRADING_TESTS names the grading binary") {
+        const std::string grader = fake_grader();
+        setenv("RAYLAB_GRADING_TESTS", grader.c_str(), 1);
+        CHECK(find_grading_binary("/anywhere/raylab") == grader);
+        setenv("RAYLAB_GRADING_TESTS", "/no/such/grader", 1);
+        CHECK(find_grading_binary("/anywhere/raylab") == "");
+        unsetenv("RAYLAB_GRADING_TESTS");
+    }
+
+    TEST_CASE("a report's render command reproduces the frame's flags") {
+        ReportInput in;
+        in.scene_source = "dtu";
+        in.view = View{Vec3(0.5f, 1.25f, 4.0f), Vec3(0, 0.4f, 0), Vec3(0, 1, 0), 40.5f};
+        in.lights = {{Vec3(1, 3, 2), Vec3(20, 10, 5)}};
+        in.ambient = 0.25f;
+        in.settings.width = 64;
+        in.settings.height = 48;
+        in.settings.mode = ShadingMode::normals;
+        in.settings.shadows = false;
+        in.modules = ModuleSelection::all(Impl::student);
+        const std::string command = render_command(in, "out.png");
+        // Split the command into words (it has no quoted words here) and parse them back
+        std::istringstream words(command);
+        std::vector<std::string> args;
+        for (std::string w; words >> w;)
+            args.push_back(w);
+        std::vector<const char*> argv;
+        for (const std::string& a : args)
+            argv.push_back(a.c_str());
+        const Options o = parse_options(int(argv.size()), argv.data());
+        CHECK(args[0] == "raylab-render");
+        CHECK(o.scene == "dtu");
+        CHECK(*o.eye == in.view.eye);
+        CHECK(*o.fov == in.view.fov);
+        REQUIRE(o.lights.size() == 1);
+        CHECK(o.lights[0].I == in.lights[0].I);
+        CHECK(*o.ambient == 0.25f);
+        CHECK(o.settings.mode == ShadingMode::normals);
+        CHECK_FALSE(o.settings.shadows);
+        CHECK(o.settings.width == 64);
+        CHECK(o.output == "out.png");
+        CHECK(o.modules.impl == in.modules.impl);
+    }
+
+    TEST_CASE("the viewer renders the same image as render() and reports into a folder") {
+        const Options options =
+            parse({"--width", "32", "--height", "24", "--eye", "0.3,0.2,3"});
+        Headless h(options);
+        h.render();
+        REQUIRE(h.v.frames.have_full);
+        const Scene scene = make_scene(options);
+        Image expected;
+        render(scene, scene.view, options.settings, ModuleTable::make(options.modules),
+               expected);
+        CHECK(h.v.frames.full.pixels == expected.pixels);
+
+        const std::string dir = temp_dir("report") + "/report";
+        CHECK(save_report(h.v, dir));
+        for (const char* file : {"view.txt", "settings.txt", "image.png", "log.txt"})
+            CHECK_MESSAGE(std::filesystem::exists(dir + "/" + file), file);
+        std::ifstream settings(dir + "/settings.txt");
+        std::stringstream text;
+        text << settings.rdbuf();
+        CHECK(text.str().find(
+                  "raylab-render --scene cornell --eye 0.300000012,0.200000003,3") !=
+              std::string::npos);
+    }
+
+    TEST_CASE("panel errors leave the previous scene and view running") {
+        Headless h(parse({"--width", "16", "--height", "12"}));
+        const View before = h.v.state.view;
+        const std::uint64_t version = h.v.state.scene_version;
+
+        // A view file with a bad line: message names the line, nothing changes
+        const std::string dir = temp_dir("errors");
+        std::ofstream(dir + "/bad.txt") << "eye 0 0 3\nlookat 0 0\n";
+        CHECK_FALSE(load_view(h.v, dir + "/bad.txt"));
+        CHECK(h.v.panel.error == dir + "/bad.txt:2: 'lookat' needs 3 numbers, found 2");
+        CHECK(h.v.state.view.eye == before.eye);
+
+        // An OBJ that does not exist: loaded in the background, fails, scene stays
+        start_loading_scene(h.v, dir + "/missing.obj");
+        h.v.loading.wait();
+        finish_loading(h.v);
+        CHECK(h.v.state.scene_version == version);
+        CHECK(h.v.panel.error.find("missing.obj") != std::string::npos);
+        CHECK(h.v.panel.error.find("still showing cornell") != std::string::npos);
+
+        // A typed camera with eye == look-at is not applied
+        View bad = before;
+        bad.lookat = bad.eye;
+        CHECK_FALSE(apply_view(h.v, bad));
+        CHECK(h.v.panel.view_error.rfind("not applied: ", 0) == 0);
+        CHECK(h.v.state.view.lookat == before.lookat);
+
+        // A built-in scene loads at once and becomes the scene
+        start_loading_scene(h.v, "dtu");
+        CHECK(h.v.state.scene_version == version + 1);
+        CHECK(h.v.state.scene.spheres.size() == 3);
+    }
+
+    TEST_CASE("a preview renders at a fraction of the size while a value is dragged") {
+        CHECK(preview_factor(10.0) == 1);
+        CHECK(preview_factor(100.0) == 2);
+        CHECK(preview_factor(1e6) == 8);
+        Headless h(parse({"--width", "64", "--height", "48"}));
+        h.v.frames.last_full.milliseconds = 100.0;  // as if a full frame took 100 ms
+        h.v.state.interacting = true;
+        h.render();
+        CHECK(h.v.frames.shown_preview);
+        CHECK(h.v.frames.shown.width == 32);
+        CHECK_FALSE(h.v.frames.have_full);
+    }
+}
