@@ -1,0 +1,139 @@
+// The procedural mesh and the scene section's ray sets (bench/mesh.h).
+#include "mesh.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "raylab/renderer.h"
+
+namespace raylab::bench {
+
+namespace {
+
+constexpr double kPiD = 3.14159265358979323846;
+
+// Radius of the bumpy sphere at polar angle theta, azimuth phi; integer frequencies in
+// phi keep it continuous across phi = 0, and sin(theta) factors keep the poles round
+double displaced_radius(double theta, double phi) {
+    return 1.0 + 0.06 * std::sin(7.0 * theta) * std::cos(5.0 * phi) +
+           0.03 * std::sin(theta) * std::sin(19.0 * phi + 11.0 * theta) +
+           0.01 * std::sin(theta) * std::cos(53.0 * phi - 37.0 * theta);
+}
+
+// Adds triangle (a, b, c) wound counter-clockwise seen from outside (the centre is 0)
+void add_outward(Scene& scene, const Vec3& a, Vec3 b, Vec3 c) {
+    const Vec3 n = glm::cross(b - a, c - a);
+    if (glm::dot(n, a + b + c) < 0.0f) std::swap(b, c);
+    SceneTriangle t;
+    t.v0 = a;
+    t.v1 = b;
+    t.v2 = c;
+    scene.triangles.push_back(t);
+}
+
+// The shadow module's any-hit query, recording its rays instead of answering them
+class RecordingOccluder : public Occluder {
+  public:
+    explicit RecordingOccluder(std::vector<Ray>& out) : out_(out) {}
+    bool occluded(const Ray& r) const override {
+        out_.push_back(r);
+        return false;
+    }
+
+  private:
+    std::vector<Ray>& out_;
+};
+
+}  // namespace
+
+Scene displaced_sphere(int triangles) {
+    // 2 nu (nv - 1) triangles with nu = 2 nv
+    const int nv = std::max(3, static_cast<int>(std::lround(std::sqrt(triangles / 4.0))));
+    const int nu = 2 * nv;
+    std::vector<Vec3> grid(static_cast<size_t>(nu) * (nv + 1));
+    const auto at = [&](int iu, int iv) -> Vec3& {
+        return grid[static_cast<size_t>(iv) * nu + static_cast<size_t>(iu % nu)];
+    };
+    for (int iv = 0; iv <= nv; ++iv) {
+        for (int iu = 0; iu < nu; ++iu) {
+            const double theta = kPiD * iv / nv, phi = 2.0 * kPiD * iu / nu;
+            const double r = displaced_radius(theta, phi);
+            at(iu, iv) = Vec3(DVec3(std::sin(theta) * std::cos(phi), std::cos(theta),
+                                    std::sin(theta) * std::sin(phi)) *
+                              r);
+            // One vertex per pole, so the caps close exactly
+            if (iv == 0) at(iu, iv) = Vec3(0.0f, 1.0f, 0.0f);
+            if (iv == nv) at(iu, iv) = Vec3(0.0f, -1.0f, 0.0f);
+        }
+    }
+    Scene scene;
+    scene.name = "displaced sphere";
+    scene.materials.push_back(Material{"clay", Vec3(0.7f, 0.6f, 0.5f), Vec3(0.0f)});
+    scene.triangles.reserve(static_cast<size_t>(2 * nu * (nv - 1)));
+    for (int iv = 0; iv < nv; ++iv) {
+        for (int iu = 0; iu < nu; ++iu) {
+            const Vec3 &a = at(iu, iv), &b = at(iu + 1, iv);
+            const Vec3 &c = at(iu, iv + 1), &d = at(iu + 1, iv + 1);
+            if (iv > 0) add_outward(scene, a, b, d);
+            if (iv < nv - 1) add_outward(scene, a, d, c);
+        }
+    }
+    scene.view = View{Vec3(0.0f, 0.8f, 3.0f), Vec3(0.0f), Vec3(0.0f, 1.0f, 0.0f), 45.0f};
+    scene.lights.push_back(PointLight{Vec3(3.0f, 4.0f, 3.0f), Vec3(40.0f)});
+    scene.commit();
+    return scene;
+}
+
+std::vector<Ray> camera_rays(const Scene& scene, const ModuleTable& modules, int width,
+                             int height) {
+    const PinholeCamera camera = make_camera(modules, scene.view);
+    std::vector<Ray> rays;
+    rays.reserve(static_cast<size_t>(width) * height);
+    for (int j = 0; j < height; ++j) {
+        for (int i = 0; i < width; ++i) {
+            Ray r = modules.camera_ray(camera,
+                                       modules.image_plane_point(i, j, width, height));
+            r.w = glm::normalize(r.w);
+            rays.push_back(r);
+        }
+    }
+    return rays;
+}
+
+std::vector<Ray> shadow_rays(const Scene& scene, const ModuleTable& modules,
+                             const std::vector<Ray>& camera) {
+    std::vector<Ray> rays;
+    const RecordingOccluder recorder(rays);
+    TraceCounters counters;
+    for (const Ray& r : camera) {
+        const std::optional<Hit> hit = scene.closest_hit(modules, r, counters);
+        if (!hit) continue;
+        for (const PointLight& light : scene.lights) {
+            const LightSample sample = modules.sample_point_light(light, hit->position);
+            // As the renderer: no shadow ray towards a light behind the surface
+            if (glm::dot(hit->ns, sample.wi) > 0.0f)
+                modules.in_shadow(recorder, hit->position, hit->ns, sample);
+        }
+    }
+    return rays;
+}
+
+std::vector<Ray> random_rays(const Scene& scene, Rng& rng, int n) {
+    const Aabb box = scene.bounds();
+    const DVec3 lo(box.lo), hi(box.hi), centre = 0.5 * (lo + hi);
+    const double radius = glm::length(hi - lo);
+    std::vector<Ray> rays;
+    rays.reserve(static_cast<size_t>(n));
+    for (int k = 0; k < n; ++k) {
+        const DVec3 o = centre + radius * rng.unit_vector();
+        const DVec3 p(rng.uniform(lo.x, hi.x), rng.uniform(lo.y, hi.y),
+                      rng.uniform(lo.z, hi.z));
+        Ray r;
+        r.o = Vec3(o);
+        r.w = Vec3(glm::normalize(p - DVec3(r.o)));
+        rays.push_back(r);
+    }
+    return rays;
+}
+
+}  // namespace raylab::bench

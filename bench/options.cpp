@@ -1,0 +1,142 @@
+// The command line of raylab-bench (bench/options.h).
+#include "options.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <limits>
+#include <thread>
+
+#include "raylab/error.h"
+
+namespace raylab::bench {
+
+namespace {
+
+long long parse_integer(const std::string& option, const std::string& value, long long lo,
+                        long long hi) {
+    char* end = nullptr;
+    const long long v = std::strtoll(value.c_str(), &end, 10);
+    if (value.empty() || *end != '\0' || v < lo || v > hi) {
+        throw Error(option + " expects an integer in " + std::to_string(lo) + ".." +
+                    std::to_string(hi) + ", got '" + value + "'");
+    }
+    return v;
+}
+
+std::vector<double> parse_distances(const std::string& value) {
+    std::vector<double> out;
+    size_t start = 0;
+    while (start <= value.size()) {
+        const size_t comma = std::min(value.find(',', start), value.size());
+        const std::string word = value.substr(start, comma - start);
+        char* end = nullptr;
+        const double d = std::strtod(word.c_str(), &end);
+        if (word.empty() || *end != '\0' || !(d > 0.0 && d <= 1e12))
+            throw Error(
+                "--distances expects numbers in (0, 1e12] such as 1,1e2,1e4, got '" +
+                word + "'");
+        out.push_back(d);
+        start = comma + 1;
+    }
+    return out;
+}
+
+void parse_sections(const std::string& value, BenchOptions& o) {
+    o.kernels = o.scenes = o.render = false;
+    size_t start = 0;
+    while (start <= value.size()) {
+        const size_t comma = std::min(value.find(',', start), value.size());
+        const std::string word = value.substr(start, comma - start);
+        if (word == "kernels") {
+            o.kernels = true;
+        } else if (word == "scenes") {
+            o.scenes = true;
+        } else if (word == "render") {
+            o.render = true;
+        } else if (word == "all") {
+            o.kernels = o.scenes = o.render = true;
+        } else {
+            throw Error("unknown section '" + word + "' (kernels, scenes, render, all)");
+        }
+        start = comma + 1;
+    }
+}
+
+}  // namespace
+
+std::string bench_help() {
+    return "raylab-bench: run time against error of raylab's intersection kernels,\n"
+           "raylab against Intel Embree on the same rays, and the renderer's cost.\n\n"
+           "Usage: raylab-bench [options]\n\n"
+           "  --sections LIST   kernels,scenes,render or all (default all)\n"
+           "  --quick           a run of about 30 s: fewer rays, repeats and triangles\n"
+           "  --repeats N       timed repeats per measurement, median reported (5; quick "
+           "3)\n"
+           "  --rays N          rays per kernel ray set (131072; quick 16384)\n"
+           "  --distances LIST  target distances from the origin (1,1e2,1e4,1e5,1e6)\n"
+           "  --mesh-tris N     triangles of the procedural mesh (400000; quick 100000)\n"
+           "  --size WxH        camera rays and renders (640x480)\n"
+           "  --threads N       what 'all threads' means in the render section\n"
+           "                    (default: hardware threads)\n"
+           "  --seed S          master seed of every random ray set (20240601)\n"
+           "  --help            this text\n\n"
+           "Timings are medians of the repeats; run on a quiet machine. Speeds are\n"
+           "reported, never asserted. See docs/benchmarks.md.\n";
+}
+
+BenchOptions parse_bench_options(int argc, char** argv) {
+    BenchOptions o;
+    // --quick changes the defaults; explicit options win whatever their order
+    for (int k = 1; k < argc; ++k) {
+        if (std::string(argv[k]) == "--quick") {
+            o.quick = true;
+            o.repeats = 3;
+            o.kernel_rays = 1 << 14;
+            o.mesh_triangles = 100000;
+        }
+    }
+    for (int k = 1; k < argc; ++k) {
+        const std::string arg = argv[k];
+        const auto value = [&]() -> std::string {
+            if (k + 1 >= argc) throw Error(arg + " needs a value (see --help)");
+            return argv[++k];
+        };
+        if (arg == "--help" || arg == "-h") {
+            o.help = true;
+        } else if (arg == "--quick") {
+        } else if (arg == "--sections") {
+            parse_sections(value(), o);
+        } else if (arg == "--repeats") {
+            o.repeats = static_cast<int>(parse_integer(arg, value(), 1, 1000));
+        } else if (arg == "--rays") {
+            o.kernel_rays = static_cast<int>(parse_integer(arg, value(), 16, 1 << 24));
+        } else if (arg == "--distances") {
+            o.distances = parse_distances(value());
+        } else if (arg == "--mesh-tris") {
+            o.mesh_triangles =
+                static_cast<int>(parse_integer(arg, value(), 100, 20000000));
+        } else if (arg == "--size") {
+            const std::string v = value();
+            const size_t x = v.find('x');
+            if (x == std::string::npos)
+                throw Error("--size expects WxH, got '" + v + "'");
+            o.width = static_cast<int>(parse_integer(arg, v.substr(0, x), 1, 16384));
+            o.height = static_cast<int>(parse_integer(arg, v.substr(x + 1), 1, 16384));
+        } else if (arg == "--threads") {
+            o.threads = static_cast<int>(parse_integer(arg, value(), 1, 1024));
+        } else if (arg == "--seed") {
+            o.seed = static_cast<std::uint64_t>(
+                parse_integer(arg, value(), 0, std::numeric_limits<long long>::max()));
+        } else {
+            throw Error("unknown option '" + arg + "' (see --help)");
+        }
+    }
+    return o;
+}
+
+int all_threads(const BenchOptions& options) {
+    if (options.threads > 0) return options.threads;
+    return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+}  // namespace raylab::bench

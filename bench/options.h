@@ -1,0 +1,37 @@
+// bench/options.h: the command line of raylab-bench.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace raylab::bench {
+
+/// What to run and how big. Defaults give a run of a few minutes on 2 cores; --quick one
+/// of about 30 s.
+struct BenchOptions {
+    bool help = false;
+    bool kernels = true;        ///< section 1: kernels, run time against error
+    bool scenes = true;         ///< section 2: raylab against Embree on the same rays
+    bool render = true;         ///< section 3: render() and the work it skips
+    bool quick = false;         ///< also thins the what-if ray sets to 65536 rays
+    int repeats = 5;            ///< timed repeats per measurement (median reported)
+    int kernel_rays = 1 << 17;  ///< rays per kernel ray set
+    std::vector<double> distances{1.0, 1e2, 1e4, 1e5, 1e6};  ///< target distances
+    int mesh_triangles = 400000;  ///< size of the procedural displaced sphere
+    int width = 640;              ///< image size of camera rays and renders
+    int height = 480;
+    int threads = 0;  ///< "all" threads of the render section; 0: hardware threads
+    std::uint64_t seed = 20240601;  ///< master seed of every random ray set
+};
+
+/// Parses argv. Throws raylab::Error naming a bad option or value.
+BenchOptions parse_bench_options(int argc, char** argv);
+
+/// The --help text.
+std::string bench_help();
+
+/// The thread count that "all" means.
+int all_threads(const BenchOptions& options);
+
+}  // namespace raylab::bench

@@ -1,0 +1,151 @@
+// Tables, statistics and the machine header of raylab-bench (bench/report.h).
+#include "report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <limits>
+#include <thread>
+
+namespace raylab::bench {
+
+std::string fmt(const char* format, ...) {
+    va_list args, copy;
+    va_start(args, format);
+    va_copy(copy, args);
+    const int n = std::vsnprintf(nullptr, 0, format, copy);
+    va_end(copy);
+    std::string out(static_cast<size_t>(std::max(n, 0)) + 1, '\0');
+    std::vsnprintf(out.data(), out.size(), format, args);
+    va_end(args);
+    out.resize(static_cast<size_t>(std::max(n, 0)));
+    return out;
+}
+
+std::string sci(double v) {
+    if (std::isnan(v)) return "-";
+    if (v == 0.0) return "0";
+    return fmt("%.2e", v);
+}
+
+Table::Table(std::vector<std::string> headers, int left_columns)
+    : headers_(std::move(headers)), left_columns_(left_columns) {}
+
+void Table::row(std::vector<std::string> cells) {
+    cells.resize(headers_.size());
+    rows_.push_back(std::move(cells));
+}
+
+void Table::print() const {
+    std::vector<size_t> width(headers_.size(), 3);
+    for (size_t c = 0; c < headers_.size(); ++c) {
+        width[c] = std::max(width[c], headers_[c].size());
+        for (const auto& r : rows_)
+            width[c] = std::max(width[c], r[c].size());
+    }
+    const auto line = [&](const std::vector<std::string>& cells) {
+        std::string s = "|";
+        for (size_t c = 0; c < cells.size(); ++c) {
+            const std::string pad(width[c] - cells[c].size(), ' ');
+            const bool left = static_cast<int>(c) < left_columns_;
+            s += " " + (left ? cells[c] + pad : pad + cells[c]) + " |";
+        }
+        std::printf("%s\n", s.c_str());
+    };
+    line(headers_);
+    std::string rule = "|";
+    for (size_t c = 0; c < headers_.size(); ++c) {
+        const bool left = static_cast<int>(c) < left_columns_;
+        rule += left ? " " + std::string(width[c], '-') + " |"
+                     : " " + std::string(width[c] - 1, '-') + ": |";
+    }
+    std::printf("%s\n", rule.c_str());
+    for (const auto& r : rows_)
+        line(r);
+    std::printf("\n");
+    std::fflush(stdout);
+}
+
+void print_heading(const std::string& title, const std::string& text) {
+    std::printf("## %s\n\n", title.c_str());
+    if (!text.empty()) std::printf("%s\n\n", text.c_str());
+    std::fflush(stdout);
+}
+
+double median(std::vector<double> v) {
+    return quantile(std::move(v), 0.5);
+}
+
+double quantile(std::vector<double> v, double q) {
+    if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+    const size_t k = std::min(v.size() - 1, static_cast<size_t>(q * v.size()));
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+    return v[k];
+}
+
+std::vector<double> interleaved_median_seconds(
+    int repeats, const std::vector<std::function<void()>>& works) {
+    for (const auto& work : works)
+        work();
+    std::vector<std::vector<double>> s(works.size());
+    for (int k = 0; k < repeats; ++k) {
+        for (size_t w = 0; w < works.size(); ++w) {
+            const auto start = std::chrono::steady_clock::now();
+            works[w]();
+            s[w].push_back(seconds_since(start));
+        }
+    }
+    std::vector<double> out;
+    for (const auto& v : s)
+        out.push_back(median(v));
+    return out;
+}
+
+double load_average() {
+    std::ifstream in("/proc/loadavg");
+    double load = std::numeric_limits<double>::quiet_NaN();
+    in >> load;
+    return load;
+}
+
+namespace {
+
+std::string cpu_model() {
+    std::ifstream in("/proc/cpuinfo");
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.rfind("model name", 0) == 0) {
+            const size_t colon = line.find(':');
+            if (colon != std::string::npos) return line.substr(colon + 2);
+        }
+    }
+    return "unknown";
+}
+
+}  // namespace
+
+void print_machine(unsigned long long seed, int repeats) {
+    char date[64];
+    const std::time_t now = std::time(nullptr);
+    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M %Z", std::localtime(&now));
+#ifdef NDEBUG
+    const char* build = "optimised (NDEBUG)";
+#else
+    const char* build = "NOT optimised (assertions on): timings mean little";
+#endif
+    std::printf("# raylab-bench\n\n");
+    std::printf("- date: %s\n", date);
+    std::printf("- CPU: %s, %u hardware threads\n", cpu_model().c_str(),
+                std::thread::hardware_concurrency());
+    std::printf("- load average at start: %.2f (others' work makes timings noisy)\n",
+                load_average());
+    std::printf("- compiler: g++-compatible %s, build: %s\n", __VERSION__, build);
+    std::printf("- seed: %llu (rerun with --seed %llu for the same rays)\n", seed, seed);
+    std::printf("- timings: median of %d repeats after one warm-up run\n\n", repeats);
+    std::fflush(stdout);
+}
+
+}  // namespace raylab::bench

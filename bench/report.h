@@ -1,0 +1,73 @@
+// bench/report.h: Markdown tables, number formatting, medians and timing for
+// raylab-bench.
+#pragma once
+
+#include <chrono>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace raylab::bench {
+
+/// printf into a std::string.
+std::string fmt(const char* format, ...) __attribute__((format(printf, 1, 2)));
+
+/// A value in 3 significant digits ("0.000123" style avoided: 1.23e-04), or "-" for NaN.
+std::string sci(double v);
+
+/// A table printed as aligned Markdown, so that the output pastes into docs as it is.
+class Table {
+  public:
+    /// The first left_columns columns are left-aligned (labels), the rest right-aligned.
+    Table(std::vector<std::string> headers, int left_columns = 1);
+    void row(std::vector<std::string> cells);
+    void print() const;
+
+  private:
+    std::vector<std::string> headers_;
+    std::vector<std::vector<std::string>> rows_;
+    int left_columns_;
+};
+
+/// Prints "## title" and an optional explanation, as the sections' headings.
+void print_heading(const std::string& title, const std::string& text = "");
+
+/// Median of v (v is copied); NaN for an empty v.
+double median(std::vector<double> v);
+
+/// The q-quantile (0..1) of v by nearest rank; NaN for an empty v.
+double quantile(std::vector<double> v, double q);
+
+/// Wall-clock seconds since start.
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+/// Runs work once untimed (warm-up), then repeats times, and returns the median time of
+/// one run in seconds.
+template <class Work>
+double median_seconds(int repeats, Work&& work) {
+    work();
+    std::vector<double> s;
+    for (int k = 0; k < repeats; ++k) {
+        const auto start = std::chrono::steady_clock::now();
+        work();
+        s.push_back(seconds_since(start));
+    }
+    return median(s);
+}
+
+/// Times several works round-robin: each once untimed (warm-up), then `repeats` rounds
+/// of one run each. Returns the median seconds of each work. Interleaving spreads a
+/// change of machine load over all works alike, so their ratios stay fair.
+std::vector<double> interleaved_median_seconds(
+    int repeats, const std::vector<std::function<void()>>& works);
+
+/// Date, CPU, threads, load, compiler and seed: the header of every run.
+void print_machine(unsigned long long seed, int repeats);
+
+/// The 1-minute load average, from /proc/loadavg (NaN when unavailable).
+double load_average();
+
+}  // namespace raylab::bench

@@ -1,0 +1,214 @@
+// Section 1: intersection kernels, run time against error (bench/sections.h).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "kernel_cases.h"
+#include "kernels.h"
+#include "report.h"
+#include "sections.h"
+
+namespace raylab::bench {
+
+namespace {
+
+// Keeps the timed loops' results alive
+volatile float g_sink = 0.0f;
+
+// What one kernel did on one ray set
+struct Outcome {
+    double ns = 0.0;              // median ns per test
+    size_t truth_hits = 0;        // rays the ground truth says hit
+    size_t missed = 0;            // truth hits, kernel misses
+    size_t false_hits = 0;        // kernel hits, truth misses
+    std::vector<double> rel_err;  // |t - t_true| / t_true where both hit
+};
+
+// Times call(case) over all cases, then compares every result with the truth
+template <class Case, class Call>
+Outcome evaluate(const std::vector<Case>& cases,
+                 const std::vector<std::optional<long double>>& truth, Call call,
+                 int repeats) {
+    Outcome out;
+    const double s = median_seconds(repeats, [&] {
+        float sum = 0.0f;
+        for (const Case& c : cases) {
+            if (const auto hit = call(c)) sum += hit->t;
+        }
+        g_sink = sum;
+    });
+    out.ns = 1e9 * s / static_cast<double>(cases.size());
+    for (size_t k = 0; k < cases.size(); ++k) {
+        const auto hit = call(cases[k]);
+        const auto& t = truth[k];
+        out.truth_hits += t.has_value();
+        if (t && !hit) ++out.missed;
+        if (!t && hit) ++out.false_hits;
+        if (t && hit && *t > 0) {
+            const long double err = std::fabs(static_cast<long double>(hit->t) - *t) / *t;
+            out.rel_err.push_back(static_cast<double>(err));
+        }
+    }
+    return out;
+}
+
+std::vector<std::string> outcome_cells(const std::string& set, double D, const char* name,
+                                       const Outcome& o) {
+    return {set,
+            fmt("%g", D),
+            name,
+            fmt("%.1f", o.ns),
+            fmt("%zu", o.truth_hits),
+            fmt("%zu", o.missed),
+            fmt("%zu", o.false_hits),
+            sci(median(o.rel_err)),
+            sci(quantile(o.rel_err, 0.99)),
+            sci(quantile(o.rel_err, 1.0))};
+}
+
+Table outcome_table() {
+    return Table({"rays", "D", "kernel", "ns/test", "truth hits", "missed", "false hits",
+                  "median rel err t", "p99 rel err t", "max rel err t"},
+                 3);
+}
+
+void sphere_table(const BenchOptions& opt) {
+    Table table = outcome_table();
+    std::uint64_t stream = 100;
+    for (const bool grazing : {false, true}) {
+        for (const double D : opt.distances) {
+            Rng rng(opt.seed, stream++);
+            const auto cases = sphere_cases(rng, D, opt.kernel_rays, grazing);
+            std::vector<std::optional<long double>> truth;
+            for (const SphereCase& c : cases)
+                truth.push_back(exact_sphere_t(c.r, c.s));
+            for (const NamedSphereKernel& k : sphere_kernels()) {
+                SphereKernel volatile fn_hidden = k.fn;  // no inlining: a table call
+                const SphereKernel fn = fn_hidden;
+                const Outcome o = evaluate(
+                    cases, truth, [fn](const SphereCase& c) { return fn(c.r, c.s); },
+                    opt.repeats);
+                table.row(outcome_cells(grazing ? "grazing" : "random", D, k.name, o));
+            }
+        }
+    }
+    table.print();
+}
+
+void triangle_table(const BenchOptions& opt) {
+    Table table = outcome_table();
+    std::uint64_t stream = 200;
+    for (const bool grazing : {false, true}) {
+        for (const double D : opt.distances) {
+            Rng rng(opt.seed, stream++);
+            const auto cases = triangle_cases(rng, D, opt.kernel_rays, grazing);
+            std::vector<std::optional<long double>> truth;
+            for (const TriangleCase& c : cases)
+                truth.push_back(exact_triangle_t(c.r, c.v0, c.v1, c.v2));
+            for (const NamedTriangleKernel& k : triangle_kernels()) {
+                TriangleKernel volatile fn_hidden = k.fn;
+                const TriangleKernel fn = fn_hidden;
+                const Outcome o = evaluate(
+                    cases, truth,
+                    [fn](const TriangleCase& c) { return fn(c.r, c.v0, c.v1, c.v2); },
+                    opt.repeats);
+                table.row(outcome_cells(grazing ? "grazing" : "random", D, k.name, o));
+            }
+        }
+    }
+    table.print();
+}
+
+// Rays through a shared edge: a watertight kernel hits at least one of the two triangles
+// wherever the truth hits one (a ray aimed at the edge may pass beyond its end: its float
+// direction is rounded, by up to D * 6e-8 across)
+struct EdgeTruth {
+    std::optional<long double> t;  // the nearer exact hit of the two triangles
+};
+
+std::vector<EdgeTruth> edge_truth(const std::vector<SharedEdgeCase>& cases) {
+    std::vector<EdgeTruth> truth;
+    for (const SharedEdgeCase& c : cases) {
+        const auto t1 = exact_triangle_t(c.r, c.a, c.b, c.c1);
+        const auto t2 = exact_triangle_t(c.r, c.b, c.a, c.c2);
+        truth.push_back({t1 && t2 ? std::min(t1, t2) : (t1 ? t1 : t2)});
+    }
+    return truth;
+}
+
+std::vector<std::string> edge_row(double D, const NamedTriangleKernel& k,
+                                  const std::vector<SharedEdgeCase>& cases,
+                                  const std::vector<EdgeTruth>& truth, int repeats) {
+    TriangleKernel volatile fn_hidden = k.fn;
+    const TriangleKernel fn = fn_hidden;
+    const double s = median_seconds(repeats, [&] {
+        float sum = 0.0f;
+        for (const SharedEdgeCase& c : cases) {
+            if (auto h = fn(c.r, c.a, c.b, c.c1)) sum += h->t;
+            if (auto h = fn(c.r, c.b, c.a, c.c2)) sum += h->t;
+        }
+        g_sink = sum;
+    });
+    size_t truth_hits = 0, leaks = 0, both = 0;
+    std::vector<double> err;
+    for (size_t i = 0; i < cases.size(); ++i) {
+        const SharedEdgeCase& c = cases[i];
+        const auto h1 = fn(c.r, c.a, c.b, c.c1), h2 = fn(c.r, c.b, c.a, c.c2);
+        const auto& t = truth[i].t;
+        truth_hits += t.has_value();
+        leaks += t && !h1 && !h2;
+        both += h1 && h2;
+        const auto h = h1 && h2 ? (h1->t < h2->t ? h1 : h2) : (h1 ? h1 : h2);
+        if (t && h)
+            err.push_back(
+                static_cast<double>(std::fabs(static_cast<long double>(h->t) - *t) / *t));
+    }
+    const double n = static_cast<double>(truth_hits);
+    return {fmt("%g", D),
+            k.name,
+            fmt("%.1f", 1e9 * s / (2.0 * static_cast<double>(cases.size()))),
+            fmt("%zu", truth_hits),
+            fmt("%zu", leaks),
+            fmt("%.3f", 100.0 * static_cast<double>(leaks) / n),
+            fmt("%zu", both),
+            sci(quantile(err, 1.0))};
+}
+
+void shared_edge_table(const BenchOptions& opt) {
+    Table table({"D", "kernel", "ns/test", "truth hits", "hit neither (leak)", "leak %",
+                 "hit both", "max rel err t"},
+                2);
+    std::uint64_t stream = 300;
+    for (const double D : opt.distances) {
+        Rng rng(opt.seed, stream++);
+        const auto cases = shared_edge_cases(rng, D, opt.kernel_rays);
+        const auto truth = edge_truth(cases);
+        for (const NamedTriangleKernel& k : triangle_kernels())
+            table.row(edge_row(D, k, cases, truth, opt.repeats));
+    }
+    table.print();
+}
+
+}  // namespace
+
+void run_kernel_section(const BenchOptions& opt) {
+    print_heading(
+        "1. Kernels: run time against error",
+        fmt("%d rays per set; origins in [-1/8, 1/8]^3, targets of size 1/4 at distance "
+            "D. Ground "
+            "truth: long double (64-bit significand), cancellation-free formulas, for "
+            "the "
+            "float ray and geometry as stored. ns/test: median of %d timed passes, one "
+            "call through a function pointer per test (as through ModuleTable), full Hit "
+            "returned. missed: the truth hits, the kernel does not; false hits: the "
+            "reverse. rel err t: |t - t_true| / t_true where both hit.",
+            opt.kernel_rays, opt.repeats));
+    std::printf("### Ray-sphere (radius 1/4)\n\n");
+    sphere_table(opt);
+    std::printf("### Ray-triangle (vertices within 1/4 of a centre)\n\n");
+    triangle_table(opt);
+    std::printf("### Rays through an edge shared by two triangles\n\n");
+    shared_edge_table(opt);
+}
+
+}  // namespace raylab::bench

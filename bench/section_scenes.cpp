@@ -1,0 +1,204 @@
+// Section 2: raylab against Embree on the same rays (bench/sections.h).
+#include <cmath>
+#include <cstdio>
+
+#include "mesh.h"
+#include "peer.h"
+#include "raylab/scenes.h"
+#include "report.h"
+#include "sections.h"
+#include "what_if.h"
+
+namespace raylab::bench {
+
+namespace {
+
+// One set of rays and the query it is traced with
+struct QuerySet {
+    std::string name;
+    bool closest;  // closest hit; otherwise any hit
+    std::vector<Ray> rays;
+};
+
+// What one tracer returned for a query set
+struct Traced {
+    std::vector<float> t;   // closest hit: t or kInfinity
+    std::vector<char> hit;  // hit or miss (both queries)
+};
+
+// One pass of raylab over the set
+void raylab_pass(const Scene& scene, const ModuleTable& modules, const QuerySet& q,
+                 Traced& out, TraceCounters& counters) {
+    const size_t n = q.rays.size();
+    out.t.assign(n, kInfinity);
+    out.hit.assign(n, 0);
+    for (size_t k = 0; k < n; ++k) {
+        if (q.closest) {
+            const std::optional<Hit> hit =
+                scene.closest_hit(modules, q.rays[k], counters);
+            out.t[k] = hit ? hit->t : kInfinity;
+            out.hit[k] = hit.has_value();
+        } else {
+            out.hit[k] = scene.any_hit(modules, q.rays[k], counters);
+        }
+    }
+}
+
+// One pass of the peer over the set
+void peer_pass(const PeerScene& peer, const QuerySet& q, Traced& out) {
+    if (q.closest) {
+        peer.closest_hit(q.rays, out.t);
+        out.hit.resize(out.t.size());
+        for (size_t k = 0; k < out.t.size(); ++k)
+            out.hit[k] = out.t[k] < kInfinity;
+    } else {
+        peer.any_hit(q.rays, out.hit);
+    }
+}
+
+// Hit/miss agreement by direction, and where both hit: how often t differs by more than
+// 1e-4 relative (another surface) and the largest |t_a - t_b| / t_b
+std::vector<std::string> agreement_cells(const QuerySet& q, const Traced& a,
+                                         const Traced& b) {
+    size_t agree = 0, only_a = 0, only_b = 0, other_surface = 0;
+    double max_dt = 0.0;
+    for (size_t k = 0; k < q.rays.size(); ++k) {
+        agree += a.hit[k] == b.hit[k];
+        only_a += a.hit[k] && !b.hit[k];
+        only_b += !a.hit[k] && b.hit[k];
+        if (q.closest && a.hit[k] && b.hit[k] && b.t[k] > 0.0f) {
+            const double dt = std::fabs(static_cast<double>(a.t[k]) - b.t[k]) / b.t[k];
+            max_dt = std::max(max_dt, dt);
+            other_surface += dt > 1e-4;
+        }
+    }
+    const double n = static_cast<double>(q.rays.size());
+    return {fmt("%.4f %%", 100.0 * static_cast<double>(agree) / n), fmt("%zu", only_a),
+            fmt("%zu", only_b), q.closest ? fmt("%zu", other_surface) : "n/a",
+            q.closest ? sci(max_dt) : "n/a"};
+}
+
+double mrays(size_t rays, double seconds) {
+    return static_cast<double>(rays) / seconds / 1e6;
+}
+
+struct Tables {
+    Table build{{"scene", "triangles", "raylab commit ms", "raylab BVH nodes",
+                 "Embree build ms", "Embree robust build ms"}};
+    Table speed{{"scene", "rays", "query", "count", "raylab Mrays/s", "Embree Mrays/s",
+                 "raylab/Embree", "Embree robust Mrays/s", "raylab/robust", "nodes/ray",
+                 "tests/ray"},
+                3};
+    Table agree{{"scene", "rays", "peer", "hit/miss agree", "raylab hits only",
+                 "peer hits only", "both hit, |dt|/t > 1e-4", "max |dt|/t"},
+                3};
+    Table what_if = what_if_table();
+};
+
+std::vector<QuerySet> query_sets(const Scene& scene, const ModuleTable& modules,
+                                 const BenchOptions& opt, std::uint64_t stream) {
+    std::vector<QuerySet> sets;
+    sets.push_back({"camera", true, camera_rays(scene, modules, opt.width, opt.height)});
+    sets.push_back({"shadow", false, shadow_rays(scene, modules, sets[0].rays)});
+    Rng rng(opt.seed, stream);
+    sets.push_back({"random", true, random_rays(scene, rng, opt.width * opt.height)});
+    return sets;
+}
+
+void bench_scene(const std::string& name, Scene& scene, const ModuleTable& modules,
+                 const BenchOptions& opt, std::uint64_t stream, Tables& tables) {
+    // Build times: raylab's commit (validation + binned SAH build, one thread), Embree's
+    // rtcCommitScene on a one-thread device
+    const double commit_s = median_seconds(opt.repeats, [&] { scene.commit(); });
+    std::unique_ptr<PeerScene> peer[2];
+    double build_s[2] = {NAN, NAN};
+    for (int robust = 0; robust < 2 && peer_available(); ++robust) {
+        std::vector<double> s;
+        for (int k = 0; k < opt.repeats; ++k) {
+            peer[robust] = make_peer_scene(scene.triangles, robust == 1, 1);
+            s.push_back(peer[robust]->build_seconds);
+        }
+        build_s[robust] = median(s);
+    }
+    tables.build.row({name, fmt("%zu", scene.triangles.size()),
+                      fmt("%.2f", 1e3 * commit_s), fmt("%zu", scene.bvh().node_count()),
+                      peer[0] ? fmt("%.2f", 1e3 * build_s[0]) : "-",
+                      peer[1] ? fmt("%.2f", 1e3 * build_s[1]) : "-"});
+
+    const std::vector<QuerySet> sets = query_sets(scene, modules, opt, stream);
+    for (const QuerySet& q : sets) {
+        // Work counts from one untimed pass; then raylab and the peers interleaved
+        Traced mine, theirs[2];
+        TraceCounters counters, scratch;
+        raylab_pass(scene, modules, q, mine, counters);
+        std::vector<std::function<void()>> works{
+            [&] { raylab_pass(scene, modules, q, mine, scratch); }};
+        for (int robust = 0; robust < 2; ++robust) {
+            if (peer[robust])
+                works.push_back(
+                    [&, robust] { peer_pass(*peer[robust], q, theirs[robust]); });
+        }
+        const std::vector<double> s = interleaved_median_seconds(opt.repeats, works);
+        const double n = static_cast<double>(q.rays.size());
+        std::vector<std::string> row{name, q.name, q.closest ? "closest" : "any",
+                                     fmt("%zu", q.rays.size()),
+                                     fmt("%.2f", mrays(q.rays.size(), s[0]))};
+        for (int robust = 0; robust < 2; ++robust) {
+            if (!peer[robust]) {
+                row.insert(row.end(), {"-", "-"});
+                continue;
+            }
+            const double theirs_s = s[static_cast<size_t>(1 + robust)];
+            row.push_back(fmt("%.2f", mrays(q.rays.size(), theirs_s)));
+            row.push_back(fmt("%.3f", theirs_s / s[0]));
+            std::vector<std::string> a{name, q.name, robust ? "Embree robust" : "Embree"};
+            for (std::string& cell : agreement_cells(q, mine, theirs[robust]))
+                a.push_back(std::move(cell));
+            tables.agree.row(a);
+        }
+        row.push_back(fmt("%.1f", static_cast<double>(counters.bvh_nodes) / n));
+        row.push_back(fmt("%.1f", static_cast<double>(counters.intersection_tests) / n));
+        tables.speed.row(row);
+    }
+    const size_t max_rays = opt.quick ? 65536 : sets[2].rays.size();
+    add_what_if_rows(tables.what_if, name, scene, modules, sets[0].rays, "camera",
+                     sets[1].rays, opt.repeats, max_rays);
+    add_what_if_rows(tables.what_if, name, scene, modules, sets[2].rays, "random", {},
+                     opt.repeats, max_rays);
+}
+
+}  // namespace
+
+void run_scene_section(const BenchOptions& opt) {
+    print_heading(
+        "2. Scenes: raylab against Embree on the same rays",
+        fmt("%s. raylab: reference modules through Scene::closest_hit / any_hit, one "
+            "thread. Embree: default build quality, scene flags none or "
+            "RTC_SCENE_FLAG_ROBUST, a device with threads=1. Camera rays: %dx%d pixel "
+            "centres; shadow rays: the ones render() casts from those hits (recorded "
+            "from the shadow module); random: as many incoherent rays from a sphere "
+            "around the scene. Mrays/s: median of %d passes, raylab's and Embree's "
+            "interleaved; raylab/Embree: raylab's speed divided by Embree's (1 = as "
+            "fast). nodes/ray, tests/ray: raylab's BVH nodes visited and primitive "
+            "tests.",
+            peer_description().c_str(), opt.width, opt.height, opt.repeats));
+    const ModuleTable modules = ModuleTable::make(ModuleSelection::all(Impl::reference));
+    Tables tables;
+    Scene cornell = cornell_box();
+    bench_scene("cornell", cornell, modules, opt, 400, tables);
+    Scene mesh = displaced_sphere(opt.mesh_triangles);
+    bench_scene("displaced sphere", mesh, modules, opt, 401, tables);
+
+    std::printf("### Build\n\n");
+    tables.build.print();
+    std::printf("### Speed (one thread)\n\n");
+    tables.speed.print();
+    if (peer_available()) {
+        std::printf("### Agreement of raylab with Embree\n\n");
+        tables.agree.print();
+    }
+    std::printf("### Where raylab's time goes (what-if, same BVH)\n\n");
+    tables.what_if.print();
+}
+
+}  // namespace raylab::bench

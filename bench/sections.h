@@ -1,0 +1,21 @@
+// bench/sections.h: the three sections of raylab-bench, each printing its own tables.
+#pragma once
+
+#include "options.h"
+
+namespace raylab::bench {
+
+/// Section 1: ray-sphere and ray-triangle formulations, ns per test against the error of
+/// t and the hit/miss errors, on seeded ray sets at growing distance, grazing and through
+/// shared edges.
+void run_kernel_section(const BenchOptions& options);
+
+/// Section 2: raylab (reference modules, Scene::closest_hit/any_hit) against Embree on
+/// the same rays: Mrays/s, ratio, build times, agreement; then where raylab's time goes.
+void run_scene_section(const BenchOptions& options);
+
+/// Section 3: render() of the Cornell box and the DTU scene, shadows on and off, 1 and
+/// all threads: time, Mrays/s, speed-up and the shadow rays skipped.
+void run_render_section(const BenchOptions& options);
+
+}  // namespace raylab::bench
