@@ -1,10 +1,27 @@
+// Module 08_shadows: hard shadows (docs/handouts/08_shadows.md).
+//
+// Your work is the function below; `grep -n "TODO(student)" exercises/` lists every step.
+// Delete the RAYLAB_STUB line when you start on it.
 #include "raylab/contract.h"
 
 namespace raylab::student {
 
+/// Shadow test (handout 08 §2): the light is blocked when the any-hit query
+/// scene.occluded(ray) finds something on the segment from x towards the light, strictly
+/// before the light.
+///
+/// Self-intersection (handout 08 §3): x carries rounding error and may lie just below its
+/// own surface, so the ray starts a little off the surface, on the light's side, and
+/// stops a little short of the light. The offset eps should grow with the size of x's
+/// coordinates (1e-4 plus a few ulps of the largest works well).
 bool in_shadow(const Occluder& scene, const Vec3& x, const Vec3& n,
                const LightSample& sample) {
-    // TODO(student) 08_shadows: shadow ray with the any-hit query.
+    // TODO(student) 08_shadows: Offset along the normal, towards the light's side of the
+    //   surface: scale = largest |coordinate| of x, eps, side = n or -n (the one with
+    //   side . wi >= 0), o = x + eps side
+    // TODO(student) 08_shadows: Segment to the light, stopping short of it:
+    //   shadow_ray{o, wi, 0, (distance from o to the light) - eps};
+    //   return scene.occluded(shadow_ray)
     RAYLAB_STUB("08_shadows");
     (void)scene, (void)x, (void)n, (void)sample;
     return false;

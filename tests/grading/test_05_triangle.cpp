@@ -1,0 +1,195 @@
+// Graders of module 05_triangle (docs/handouts/05_triangle.md).
+//
+// The hit point is (1 - beta - gamma) v0 + beta v1 + gamma v2 with beta, gamma >= 0 and
+// beta + gamma <= 1; hit.uv = (beta, gamma); hit.n = normalize((v1 - v0) x (v2 - v0)),
+// whichever side the ray comes from. Any correct method passes: Cramer's rule,
+// Moeller-Trumbore, edge functions, float or double.
+#include "grading.h"
+
+using namespace raylab;
+using namespace raylab::grading;
+
+namespace {
+
+// The unit right triangle in the plane z = 0; counter-clockwise seen from +z, n = (0, 0,
+// 1)
+const Vec3 kV0(0, 0, 0), kV1(1, 0, 0), kV2(0, 1, 0);
+const Vec3 kDown(0, 0, -1);
+
+Hit make_hit(float t, const Vec3& position, const Vec3& n, const Vec2& uv) {
+    Hit h;
+    h.t = t;
+    h.position = position;
+    h.n = n;
+    h.uv = uv;
+    return h;
+}
+
+bool check(const Ray& r, const Vec3& v0, const Vec3& v1, const Vec3& v2,
+           const std::optional<Hit>& want) {
+    INFO(show(r) << "; " << show_triangle(v0, v1, v2));
+    const std::optional<Hit> got = under_test::intersect_triangle(r, v0, v1, v2);
+    return RAYLAB_CHECK_SAME(diff_hit(got, want, scale_of({r.o, v0, v1, v2}), true));
+}
+
+// A ray straight down onto the point (x, y, 0) of the unit triangle, from height 2
+bool check_down(float x, float y, bool hits) {
+    const Ray r{Vec3(x, y, 2), kDown};
+    return check(r, kV0, kV1, kV2,
+                 hits ? std::optional<Hit>(
+                            make_hit(2.0f, Vec3(x, y, 0), Vec3(0, 0, 1), Vec2(x, y)))
+                      : std::nullopt);
+}
+
+}  // namespace
+
+TEST_SUITE("05_triangle") {
+    TEST_CASE("a ray through the interior hits with barycentrics (beta, gamma)") {
+        // Onto (0.2, 0.3, 0): t = 2, and the point is 0.5 v0 + 0.2 v1 + 0.3 v2
+        check_down(0.2f, 0.3f, true);
+    }
+
+    TEST_CASE("uv holds the weights of v1 and v2, near each vertex") {
+        // Near v1 uv is near (1, 0), near v2 near (0, 1), near v0 near (0, 0)
+        check_down(0.9f, 0.05f, true);
+        check_down(0.05f, 0.9f, true);
+        check_down(0.05f, 0.05f, true);
+    }
+
+    TEST_CASE("a point beyond the long edge misses although beta and gamma are below 1") {
+        // (0.6, 0.6): beta = gamma = 0.6 <= 1, but beta + gamma = 1.2 > 1
+        check_down(0.6f, 0.6f, false);
+    }
+
+    TEST_CASE("points just outside each of the three edges miss") {
+        // beta < 0, gamma < 0, beta + gamma > 1, each by 0.001
+        check_down(-0.001f, 0.5f, false);
+        check_down(0.5f, -0.001f, false);
+        check_down(0.5005f, 0.5005f, false);
+    }
+
+    TEST_CASE("points just inside each of the three edges hit") {
+        check_down(0.001f, 0.5f, true);
+        check_down(0.5f, 0.001f, true);
+        check_down(0.4995f, 0.4995f, true);
+    }
+
+    TEST_CASE("rays through an edge or a vertex hit: the borders are included") {
+        // Points whose beta, gamma or beta + gamma are exactly 0 or 1 (exact in float)
+        check_down(0.5f, 0.0f, true);
+        check_down(0.0f, 0.25f, true);
+        check_down(0.5f, 0.5f, true);
+        check_down(1.0f, 0.0f, true);
+        check_down(0.0f, 1.0f, true);
+    }
+
+    TEST_CASE("the triangle is hit from behind too, and its normal does not flip") {
+        // From below, upwards: triangles are two-sided; n follows the winding, (0, 0, 1)
+        check(Ray{Vec3(0.2f, 0.3f, -2), Vec3(0, 0, 1)}, kV0, kV1, kV2,
+              make_hit(2.0f, Vec3(0.2f, 0.3f, 0), Vec3(0, 0, 1), Vec2(0.2f, 0.3f)));
+    }
+
+    TEST_CASE("the normal follows the winding: clockwise seen from the ray points away") {
+        // Vertices (v0, v2, v1): (v2 - v0) x (v1 - v0) = (0, 0, -1); beta and gamma are
+        // now the weights of (0, 1, 0) and (1, 0, 0): (0.3, 0.2)
+        check(Ray{Vec3(0.2f, 0.3f, 2), kDown}, kV0, kV2, kV1,
+              make_hit(2.0f, Vec3(0.2f, 0.3f, 0), Vec3(0, 0, -1), Vec2(0.3f, 0.2f)));
+    }
+
+    TEST_CASE("the normal of a large triangle has unit length") {
+        // Edges of length 10: (v1 - v0) x (v2 - v0) = (0, 0, 100) before normalizing
+        check(Ray{Vec3(2, 3, 5), kDown}, kV0, 10.0f * kV1, 10.0f * kV2,
+              make_hit(5.0f, Vec3(2, 3, 0), Vec3(0, 0, 1), Vec2(0.2f, 0.3f)));
+    }
+
+    TEST_CASE("a triangle away from the origin is hit where it is") {
+        // The unit triangle moved by m = (100, -50, 30): the hit moves with it
+        const Vec3 m(100, -50, 30);
+        check(Ray{m + Vec3(0.2f, 0.3f, 2), kDown}, kV0 + m, kV1 + m, kV2 + m,
+              make_hit(2.0f, m + Vec3(0.2f, 0.3f, 0), Vec3(0, 0, 1), Vec2(0.2f, 0.3f)));
+    }
+
+    TEST_CASE("a triangle behind the ray's origin is not hit") {
+        check(Ray{Vec3(0.2f, 0.3f, 2), Vec3(0, 0, 1)}, kV0, kV1, kV2, std::nullopt);
+    }
+
+    TEST_CASE("hits outside [tmin, tmax] are rejected, hits inside accepted") {
+        // The triangle is at t = 2 along this ray
+        const Vec3 o(0.2f, 0.3f, 2);
+        const Hit at2 =
+            make_hit(2.0f, Vec3(0.2f, 0.3f, 0), Vec3(0, 0, 1), Vec2(0.2f, 0.3f));
+        check(Ray{o, kDown, 0.0f, 1.9f}, kV0, kV1, kV2, std::nullopt);
+        check(Ray{o, kDown, 2.1f, kInfinity}, kV0, kV1, kV2, std::nullopt);
+        check(Ray{o, kDown, 1.9f, 2.1f}, kV0, kV1, kV2, at2);
+    }
+
+    TEST_CASE("a ray parallel to the triangle's plane misses it") {
+        // w . n = 0: the determinant is zero (no division by it, no NaN hit)
+        check(Ray{Vec3(-1, 0.2f, 1), Vec3(1, 0, 0)}, kV0, kV1, kV2, std::nullopt);
+        check(Ray{Vec3(-1, 0.2f, 0), Vec3(1, 0, 0)}, kV0, kV1, kV2, std::nullopt);
+    }
+
+    TEST_CASE("a degenerate triangle with collinear vertices is never hit") {
+        // All three vertices on the x axis: zero area, no normal
+        check(Ray{Vec3(0.5f, 0, 1), kDown}, Vec3(0.0f), Vec3(1, 0, 0), Vec3(2, 0, 0),
+              std::nullopt);
+        check(Ray{Vec3(0.5f, 0, 1), kDown}, Vec3(0.0f), Vec3(0.0f), Vec3(1, 0, 0),
+              std::nullopt);
+    }
+
+    TEST_CASE("random rays and triangles agree with the reference") {
+        // Random triangles that are not slivers; rays aimed at a chosen point at least
+        // 0.02 inside or outside in barycentric terms, from either side, at least 11
+        // degrees off the plane, with [tmin, tmax] containing the hit or missing it by
+        // 10% or more
+        for (int seed = 0; seed < 300; ++seed) {
+            Rng rng(seed);
+            Vec3 v0, v1, v2, N;
+            do {
+                v0 = rng.in_box(-5.0f, 5.0f);
+                v1 = rng.in_box(-5.0f, 5.0f);
+                v2 = rng.in_box(-5.0f, 5.0f);
+                N = glm::cross(v1 - v0, v2 - v0);
+            } while (glm::length(N) < 0.2f * std::max({glm::dot(v1 - v0, v1 - v0),
+                                                       glm::dot(v2 - v0, v2 - v0),
+                                                       glm::dot(v2 - v1, v2 - v1)}));
+            const bool inside = rng.integer(0, 2) != 0;
+            float beta, gamma;
+            for (;;) {
+                beta = rng.uniform(-0.5f, 1.5f);
+                gamma = rng.uniform(-0.5f, 1.5f);
+                const float margin = std::min({beta, gamma, 1.0f - beta - gamma});
+                if (inside ? margin >= 0.02f : margin <= -0.02f) break;
+            }
+            const Vec3 p = v0 + beta * (v1 - v0) + gamma * (v2 - v0);
+            Vec3 w = rng.direction_near(glm::normalize(N), 0.2f, 1.0f);
+            if (rng.integer(0, 1)) w = -w;
+            const float t = rng.uniform(0.2f, 10.0f);
+            Ray r{p - t * w, w, 0.0f, kInfinity};
+            switch (rng.integer(0, 4)) {
+                case 1:
+                    r.tmax = 0.9f * t;
+                    break;
+                case 2:
+                    r.tmin = 1.1f * t;
+                    break;
+                case 3:
+                    r.tmin = 0.5f * t, r.tmax = 1.5f * t;
+                    break;
+                case 4:
+                    r.w = -w;
+                    break;
+                default:
+                    break;
+            }
+            INFO("seed " << seed << ": " << show(r) << "; " << show_triangle(v0, v1, v2));
+            const auto want = expected<std::optional<Hit>>(
+                "05_triangle/random rays/" + std::to_string(seed), inputs(r, v0, v1, v2),
+                [&] { return reference_modules().intersect_triangle(r, v0, v1, v2); });
+            const auto got = under_test::intersect_triangle(r, v0, v1, v2);
+            if (!RAYLAB_CHECK_SAME(
+                    diff_hit(got, want, scale_of({r.o, v0, v1, v2}), true)))
+                break;
+        }
+    }
+}

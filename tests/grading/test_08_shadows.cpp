@@ -1,0 +1,282 @@
+// Graders of module 08_shadows (docs/handouts/08_shadows.md).
+//
+// The light counts at x only if the any-hit query finds nothing on the segment from x to
+// the light. The shadow ray must leave the surface without hitting it again (no shadow
+// acne) and stop before the light (blockers beyond the light cast no shadow).
+//
+// The scenes here are fakes of the Occluder interface that record every ray they are
+// asked about: small balls on or off the segment, and the surface x lies on. Any correct
+// shadow ray passes: offset origin or tmin, cast from x or from the light, any reasonable
+// epsilon (up to about 0.01 near the origin).
+#include <vector>
+
+#include "grading.h"
+
+using namespace raylab;
+using namespace raylab::grading;
+
+namespace {
+
+using DVec = glm::dvec3;
+
+/// A scene of small balls and, optionally, the plane of the surface x lies on. Every ray
+/// it is asked about is recorded.
+class FakeScene : public Occluder {
+  public:
+    struct Ball {
+        Vec3 b;      ///< centre
+        double rho;  ///< radius
+    };
+    std::vector<Ball> balls;
+    bool has_surface = false;
+    Vec3 surface_point{0.0f}, surface_n{0.0f};  ///< the plane (p - point) . n = 0
+    mutable std::vector<Ray> rays;
+
+    bool occluded(const Ray& r) const override {
+        rays.push_back(r);
+        for (const Ball& ball : balls) {
+            if (segment_distance(r, ball.b) <= ball.rho) return true;
+        }
+        return has_surface && crosses_surface(r);
+    }
+
+    std::string describe() const {
+        std::string s;
+        for (const Ball& ball : balls)
+            s += "ball at " + show(ball.b) + " of radius " + show(ball.rho) + "; ";
+        if (has_surface)
+            s += "the surface through " + show(surface_point) + " with normal " +
+                 show(surface_n) + "; ";
+        return s.empty() ? "nothing" : s;
+    }
+
+  private:
+    // Distance from b to the points o + t w with tmin <= t <= tmax (w need not be unit)
+    static double segment_distance(const Ray& r, const Vec3& b) {
+        const DVec o(r.o), w(r.w), to_b = DVec(b) - o;
+        const double ww = glm::dot(w, w);
+        if (!(ww > 0.0) || !(r.tmin <= r.tmax)) return kInfinity;
+        const double t =
+            std::clamp(glm::dot(to_b, w) / ww, double(r.tmin), double(r.tmax));
+        return glm::length(o + t * w - DVec(b));
+    }
+    // Does the segment touch or cross the surface's plane?
+    bool crosses_surface(const Ray& r) const {
+        const DVec n(surface_n), w(r.w);
+        const double s0 =
+            glm::dot(DVec(r.o) + double(r.tmin) * w - DVec(surface_point), n);
+        const double wn = glm::dot(w, n);
+        double s1;
+        if (std::isinf(r.tmax))
+            s1 = wn > 0 ? kInfinity : wn < 0 ? -kInfinity : s0;
+        else
+            s1 = glm::dot(DVec(r.o) + double(r.tmax) * w - DVec(surface_point), n);
+        return (s0 <= 0 && s1 >= 0) || (s0 >= 0 && s1 <= 0);
+    }
+};
+
+const Vec3 kUp(0, 1, 0);
+// The light 4 units above the origin, seen from the origin
+const LightSample kAbove{kUp, 4.0f, Vec3(1.0f)};
+
+bool check(const FakeScene& scene, const Vec3& x, const Vec3& n, const LightSample& s,
+           bool want) {
+    INFO("in_shadow(x = " << show(x) << ", n = " << show(n) << ", " << show(s)
+                          << ") in a scene of " << scene.describe());
+    const bool got = under_test::in_shadow(scene, x, n, s);
+    std::string rays;
+    for (const Ray& r : scene.rays)
+        rays += "\n    " + show(r);
+    return RAYLAB_CHECK(
+        got == want, "expected "
+                         << (want ? "in shadow" : "lit") << ", got "
+                         << (got ? "in shadow" : "lit")
+                         << "; the shadow rays were:" << (rays.empty() ? " none" : rays));
+}
+
+FakeScene balls(std::initializer_list<FakeScene::Ball> list) {
+    FakeScene scene;
+    scene.balls = list;
+    return scene;
+}
+
+// A surface point as the intersection modules produce it: x_true lies on the surface, the
+// float x that comes back is a few ulps of its largest coordinate below it
+struct SurfacePoint {
+    Vec3 x;
+    double below;  ///< how far x lies below the surface
+};
+SurfacePoint below_surface(const Vec3& x_true, const Vec3& n) {
+    const float m =
+        std::max({std::abs(x_true.x), std::abs(x_true.y), std::abs(x_true.z)});
+    const float ulp = std::nextafter(m, kInfinity) - m;
+    for (float k = 2.0f;; k += 1.0f) {
+        const Vec3 x = x_true - k * ulp * n;
+        const double s = glm::dot(DVec(x) - DVec(x_true), DVec(n));
+        if (s < 0.0) return {x, -s};
+    }
+}
+
+// A random case around centre: the surface point, its normal, a light at most 75 degrees
+// from the normal and 0.5 to 20 units away, and the float x a few ulps below the surface
+struct Setup {
+    Vec3 x_true, n;
+    LightSample s;
+    SurfacePoint x;
+};
+Setup random_setup(Rng& rng, const Vec3& centre, float spread) {
+    Setup c;
+    c.x_true = centre + rng.in_box(-spread, spread);
+    c.n = rng.direction();
+    const Vec3 wi = rng.direction_near(c.n, 0.25f, 1.0f);
+    c.s = LightSample{wi, rng.uniform(0.5f, 20.0f), Vec3(1.0f)};
+    c.x = below_surface(c.x_true, c.n);
+    return c;
+}
+
+FakeScene surface_of(const Setup& c) {
+    FakeScene scene;
+    scene.has_surface = true;
+    scene.surface_point = c.x_true;
+    scene.surface_n = c.n;
+    return scene;
+}
+
+}  // namespace
+
+TEST_SUITE("08_shadows") {
+    TEST_CASE("a blocker halfway to the light casts a shadow") {
+        // x = 0, light at (0, 4, 0), a ball of radius 0.05 at (0, 2, 0)
+        check(balls({{Vec3(0, 2, 0), 0.05}}), Vec3(0.0f), kUp, kAbove, true);
+    }
+
+    TEST_CASE("with nothing in the way the point is lit, and the scene is asked") {
+        const FakeScene empty;
+        check(empty, Vec3(0.0f), kUp, kAbove, false);
+        RAYLAB_CHECK(!empty.rays.empty(), "in_shadow never called scene.occluded(ray)");
+    }
+
+    TEST_CASE("a blocker beyond the light casts no shadow") {
+        // The ball at (0, 6, 0) is 2 units past the light: the shadow ray must stop at it
+        check(balls({{Vec3(0, 6, 0), 0.05}}), Vec3(0.0f), kUp, kAbove, false);
+    }
+
+    TEST_CASE(
+        "a blocker just before the light casts a shadow, one just past it does not") {
+        check(balls({{Vec3(0, 3.8f, 0), 0.05}}), Vec3(0.0f), kUp, kAbove, true);
+        check(balls({{Vec3(0, 4.2f, 0), 0.05}}), Vec3(0.0f), kUp, kAbove, false);
+    }
+
+    TEST_CASE("a blocker behind the surface point casts no shadow") {
+        // Below the floor, on the far side from the light; the light lies between the two
+        // blockers of the second scene
+        check(balls({{Vec3(0, -1, 0), 0.05}}), Vec3(0.0f), kUp, kAbove, false);
+        check(balls({{Vec3(0, -1, 0), 0.05}, {Vec3(0, 5, 0), 0.05}}), Vec3(0.0f), kUp,
+              kAbove, false);
+    }
+
+    TEST_CASE("a blocker close to the surface still casts a shadow") {
+        // A ball of radius 0.005 at height 0.02: an offset of 0.01 still sees it
+        check(balls({{Vec3(0, 0.02f, 0), 0.005}}), Vec3(0.0f), kUp, kAbove, true);
+    }
+
+    TEST_CASE("the surface does not shadow its own point (no shadow acne)") {
+        // x lies a few ulps below the surface it was found on, as float hit points do;
+        // the only thing in the scene is that surface
+        for (int seed = 0; seed < 100; ++seed) {
+            Rng rng(seed);
+            const Setup c = random_setup(rng, Vec3(0.0f), 4.0f);
+            INFO("seed " << seed << ": x lies " << show(c.x.below)
+                         << " below the surface");
+            if (!check(surface_of(c), c.x.x, c.n, c.s, false)) break;
+        }
+    }
+
+    TEST_CASE("a point 100 units from the origin shows no shadow acne either") {
+        // Here x's rounding error is about 1e-5: a fixed offset must exceed it
+        for (int seed = 0; seed < 100; ++seed) {
+            Rng rng(1000 + seed);
+            const Setup c = random_setup(rng, Vec3(100, -60, 80), 1.0f);
+            INFO("seed " << seed << ": x lies " << show(c.x.below)
+                         << " below the surface");
+            if (!check(surface_of(c), c.x.x, c.n, c.s, false)) break;
+        }
+    }
+
+    TEST_CASE("a normal facing away from the light still gives the right answer") {
+        // The same surfaces with n turned over: the light is now on the side -n points
+        // to, so the ray must leave the surface towards -n
+        for (int seed = 0; seed < 50; ++seed) {
+            Rng rng(3000 + seed);
+            const Setup c = random_setup(rng, Vec3(0.0f), 4.0f);
+            INFO("seed " << seed << ": n faces away from the light; x lies "
+                         << show(c.x.below) << " below the surface");
+            if (!check(surface_of(c), c.x.x, -c.n, c.s, false)) break;
+        }
+    }
+
+    TEST_CASE("one shadow test asks the scene one any-hit query") {
+        const FakeScene empty;
+        (void)under_test::in_shadow(empty, Vec3(0.0f), kUp, kAbove);
+        RAYLAB_CHECK(empty.rays.size() == 1, "scene.occluded was called "
+                                                 << empty.rays.size()
+                                                 << " times, expected once");
+    }
+
+    TEST_CASE("the shadow ray has a unit direction") {
+        // Rays have |w| = 1 (the intersection modules rely on it), also towards a light 4
+        // units away
+        const FakeScene empty;
+        (void)under_test::in_shadow(empty, Vec3(0.0f), kUp, kAbove);
+        REQUIRE_MESSAGE(!empty.rays.empty(),
+                        "in_shadow never called scene.occluded(ray)");
+        for (const Ray& r : empty.rays) {
+            INFO(show(r));
+            RAYLAB_CHECK(close(glm::length(r.w), 1.0, tol::kDirection),
+                         "|w| = " << show(glm::length(r.w)) << ", expected 1");
+        }
+    }
+
+    TEST_CASE("the shadow ray runs along the line between the point and the light") {
+        // Its direction is +-wi, and it starts near x or near the light
+        const Vec3 x(1, 2, 3), light = x + 4.0f * Vec3(0.6f, 0.8f, 0.0f);
+        const LightSample s{Vec3(0.6f, 0.8f, 0.0f), 4.0f, Vec3(1.0f)};
+        const FakeScene empty;
+        (void)under_test::in_shadow(empty, x, Vec3(0, 0.6f, 0.8f), s);
+        REQUIRE_MESSAGE(!empty.rays.empty(),
+                        "in_shadow never called scene.occluded(ray)");
+        for (const Ray& r : empty.rays) {
+            INFO(show(r) << " for x = " << show(x) << " and the light at "
+                         << show(light));
+            const Vec3 w = glm::normalize(r.w);
+            RAYLAB_CHECK(std::abs(std::abs(glm::dot(w, s.wi)) - 1.0f) < 1e-4f,
+                         "the direction is not along wi = " << show(s.wi));
+            RAYLAB_CHECK(glm::length(r.o - x) < 0.02f || glm::length(r.o - light) < 0.02f,
+                         "the ray starts neither at x nor at the light");
+        }
+    }
+
+    TEST_CASE("random points, lights and blockers cast the right shadows") {
+        // Each case has the surface x lies on and, at random, a ball of radius 0.005
+        // between x and the light, past the light, behind x, or none
+        for (int seed = 0; seed < 300; ++seed) {
+            Rng rng(2000 + seed);
+            const Setup c = random_setup(rng, Vec3(0.0f), 10.0f);
+            FakeScene scene = surface_of(c);
+            const int kind = rng.integer(0, 3);
+            const float r = c.s.r;
+            if (kind == 0) {
+                const float s = rng.uniform(std::max(0.05f, 0.1f * r), 0.9f * r);
+                scene.balls.push_back({c.x_true + s * c.s.wi, 0.005});
+            } else if (kind == 1) {
+                const float s = rng.uniform(1.1f * r, 2.0f * r);
+                scene.balls.push_back({c.x_true + s * c.s.wi, 0.005});
+            } else if (kind == 2) {
+                const float s = rng.uniform(0.05f, 2.0f);
+                scene.balls.push_back({c.x_true - s * c.s.wi, 0.005});
+            }
+            INFO("seed " << seed);
+            if (!check(scene, c.x.x, c.n, c.s, kind == 0)) break;
+        }
+    }
+}
