@@ -226,7 +226,7 @@ void run_tests(Viewer& v) {
 void poll_grading(Viewer& v) {
     if (v.grading_logged || v.grading->running()) return;
     v.grading_logged = true;
-    v.log.add("tests of the student's code:\n" + grades_text(v));
+    v.log.add("graders of the student's code (exercises/):\n" + grades_text(v));
 }
 
 std::string grades_text(const Viewer& v) {
@@ -237,10 +237,10 @@ std::string grades_text(const Viewer& v) {
         const ModuleGrade& g = grades[static_cast<int>(info.module)];
         if (g.status == ModuleGrade::Status::not_run) continue;
         char line[160];
-        std::snprintf(
-            line, sizeof line, "  %-15s %-9s %s\n", info.id,
-            v.state.modules[info.module] == Impl::student ? "student" : "reference",
-            g.summary.c_str());
+        std::snprintf(line, sizeof line, "  %-15s %-28s (the viewer runs the %s)\n",
+                      info.id, g.summary.c_str(),
+                      v.state.modules[info.module] == Impl::student ? "student's code"
+                                                                    : "reference");
         text += line;
     }
     return text;
@@ -312,32 +312,41 @@ bool take_result(Viewer& v) {
     return true;
 }
 
-void update_probes(Viewer& v) {
-    InspectorState& in = v.inspector;
-    const bool any = in.pinned || (in.hovering && v.state.inspector);
-    if (!any) {
-        in.probe.reset();
-        in.reference.reset();
-        in.probed_i = -1;
-        return;
-    }
-    const int i = in.pinned ? in.pin_i : in.i, j = in.pinned ? in.pin_j : in.j;
-    if (i == in.probed_i && j == in.probed_j && in.probed_job == v.frames.last_job)
-        return;
-    in.probed_i = i, in.probed_j = j, in.probed_job = v.frames.last_job;
+namespace {
+
+// Probes pixel (i, j) into report unless it already holds that pixel of the newest frame
+void probe_into(const Viewer& v, int i, int j, PixelReport& report) {
+    if (report.i == i && report.j == j && report.job == v.frames.last_job) return;
+    report.i = i, report.j = j, report.job = v.frames.last_job;
+    report.probe.reset();
+    report.reference.reset();
     try {
         const ViewerState& s = v.state;
-        in.probe =
+        report.probe =
             probe_pixel(s.scene, s.view, s.settings, ModuleTable::make(s.modules), i, j);
-        in.reference.reset();
         const ModuleSelection all = ModuleSelection::all(Impl::reference);
         if (reference_available() && s.modules.impl != all.impl) {
-            in.reference =
+            report.reference =
                 probe_pixel(s.scene, s.view, s.settings, ModuleTable::make(all), i, j);
         }
-    } catch (const std::exception& e) {
-        in.probe.reset();
-        in.reference.reset();
+    } catch (const std::exception&) {
+        report.probe.reset();  // e.g. the size changed under the mouse: nothing to show
+    }
+}
+
+}  // namespace
+
+void update_probes(Viewer& v) {
+    InspectorState& in = v.inspector;
+    if (in.hovering && v.state.inspector) {
+        probe_into(v, in.i, in.j, in.hover);
+    } else {
+        in.hover = PixelReport{};
+    }
+    if (in.pinned) {
+        probe_into(v, in.pin_i, in.pin_j, in.pin);
+    } else {
+        in.pin = PixelReport{};
     }
 }
 

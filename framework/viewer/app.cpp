@@ -100,6 +100,21 @@ bool scripted_run_done(Viewer& v, int& exit_code) {
     return true;
 }
 
+// F12: the window as it is now, before the buffers swap
+void take_screenshot(Viewer& v) {
+    v.screenshot_requested = false;
+    const std::string path =
+        v.options.screenshot.empty() ? "raylab-window.png" : v.options.screenshot;
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(v.window, &w, &h);
+    try {
+        write_screenshot(path, w, h);
+        v.log.add("saved window screenshot " + path);
+    } catch (const std::exception& e) {
+        report_error(v, e.what());
+    }
+}
+
 // What the command line asked for at exit
 int exit_actions(Viewer& v) {
     int code = 0;
@@ -187,6 +202,7 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
         glClearColor(0.12f, 0.12f, 0.13f, 1.0f);
         glClear(GL_COLOR_BUFFER_BIT);
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        if (v->screenshot_requested) take_screenshot(*v);
         if (scripted_run_done(*v, exit_code)) v->quit = true;
         glfwSwapBuffers(v->window);
     }

@@ -22,10 +22,10 @@ namespace raylab::viewer {
 
 /// doctest's closing line: "[doctest] test cases: N | P passed | F failed | S skipped".
 struct DoctestSummary {
-    int cases = 0;
+    int cases = 0;  ///< test cases run (those that passed the --test-suite filter)
     int passed = 0;
     int failed = 0;
-    int skipped = 0;
+    int skipped = 0;  ///< test cases filtered out (the other suites)
 };
 
 /// The test-case summary in doctest's console output, if there is one.

@@ -99,9 +99,9 @@ void draw_image(Viewer& v) {
         const ImVec2 b(r.x + (in.pin_i + 1) * sx + 2, r.y + (in.pin_j + 1) * sy + 2);
         draw->AddRect(a, b, IM_COL32(255, 255, 0, 255), 0.0f, 0, 2.0f);
     }
-    if (in.hovering && v.state.inspector && !in.pinned && in.probe) {
+    if (in.hovering && v.state.inspector && in.hover.probe) {
         ImGui::BeginTooltip();
-        probe_lines(v);
+        probe_lines(v, in.hover);
         ImGui::EndTooltip();
     }
 }

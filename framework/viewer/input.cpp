@@ -28,6 +28,7 @@ void on_key(GLFWwindow* window, int key, int, int action, int mods) {
     // Ctrl+Q quits; its Q is no light key, even when Ctrl is up again by the next frame
     const bool ctrl = (mods & GLFW_MOD_CONTROL) != 0;
     if (action == GLFW_PRESS && key == GLFW_KEY_Q && ctrl) v.quit = true;
+    if (action == GLFW_PRESS && key == GLFW_KEY_F12) v.screenshot_requested = true;
     if (action == GLFW_PRESS && !ctrl && key >= 0 && key < 512)
         v.input.tapped[key] = true;
 }

@@ -21,7 +21,8 @@ void print_help() {
         "Usage: raylab [options]\n\n%s%s"
         "Keys: arrows walk and turn the camera, W/A/S/D/Q/E move the selected light,\n"
         "left drag orbits, the wheel moves closer, right click pins a pixel in the\n"
-        "inspector, Ctrl+Q quits. See docs/viewer.md.\n",
+        "inspector, F12 saves a screenshot of the window, Ctrl+Q quits.\n"
+        "See docs/viewer.md.\n",
         raylab::options_help().c_str(), raylab::viewer::viewer_options_help().c_str());
 }
 

@@ -41,7 +41,10 @@ void draw_panel(Viewer& v) {
         modules_section(v);
     if (ImGui::CollapsingHeader("Frame statistics", ImGuiTreeNodeFlags_DefaultOpen))
         stats_section(v);
+    // Open at start when the command line asked for them
+    if (v.state.compare) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
     if (ImGui::CollapsingHeader("Compare with the reference")) compare_section(v);
+    if (v.inspector.pinned) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
     if (ImGui::CollapsingHeader("Pixel inspector")) inspector_section(v);
     if (ImGui::CollapsingHeader("Files and report")) files_section(v);
     if (ImGui::CollapsingHeader("Log")) log_section(v);

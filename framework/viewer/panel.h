@@ -25,8 +25,8 @@ void log_section(Viewer& v);
 void modules_section(Viewer& v);
 void compare_section(Viewer& v);
 void inspector_section(Viewer& v);
-/// The inspector's probes as text lines (the tooltip and the section share them).
-void probe_lines(const Viewer& v);
+/// A pixel's probes as text lines (the tooltip and the section share them).
+void probe_lines(const Viewer& v, const PixelReport& report);
 
 // image_view.cpp
 /// Uploads the image (or heat map) when it changed.

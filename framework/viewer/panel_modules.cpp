@@ -153,16 +153,13 @@ void compare_section(Viewer& v) {
     ImGui::TextDisabled("linear radiance, largest channel error per pixel");
 }
 
-void probe_lines(const Viewer& v) {
-    const InspectorState& in = v.inspector;
-    if (!in.probe) {
+void probe_lines(const Viewer& v, const PixelReport& report) {
+    if (!report.probe) {
         ImGui::TextDisabled("hover the image; right click pins a pixel");
         return;
     }
-    const PixelProbe& p = *in.probe;
-    const int i = in.pinned ? in.pin_i : in.i, j = in.pinned ? in.pin_j : in.j;
-    ImGui::Text("pixel (%d, %d)%s  uv (%.4f, %.4f)", i, j, in.pinned ? " pinned" : "",
-                p.uv.x, p.uv.y);
+    const PixelProbe& p = *report.probe;
+    ImGui::Text("pixel (%d, %d)  uv (%.4f, %.4f)", report.i, report.j, p.uv.x, p.uv.y);
     ImGui::Text("ray o (%.3f, %.3f, %.3f)", p.ray.o.x, p.ray.o.y, p.ray.o.z);
     ImGui::Text("    w (%.4f, %.4f, %.4f)", p.ray.w.x, p.ray.w.y, p.ray.w.z);
     if (p.hit) {
@@ -177,21 +174,27 @@ void probe_lines(const Viewer& v) {
         ImGui::Text("no hit: background");
     }
     ImGui::Text("radiance L (%.4f, %.4f, %.4f)", p.L.x, p.L.y, p.L.z);
-    if (in.reference) {
-        const PixelProbe& r = *in.reference;
-        ImGui::TextColored(kGrey, "reference: %s t = %.5f, L (%.4f, %.4f, %.4f)",
-                           r.hit ? "hit" : "miss", r.hit ? r.hit->t : 0.0f, r.L.x, r.L.y,
-                           r.L.z);
+    if (report.reference) {
+        const PixelProbe& r = *report.reference;
+        if (r.hit) {
+            ImGui::TextColored(kGrey, "reference: hit t = %.5f, L (%.4f, %.4f, %.4f)",
+                               r.hit->t, r.L.x, r.L.y, r.L.z);
+        } else {
+            ImGui::TextColored(kGrey, "reference: no hit, L (%.4f, %.4f, %.4f)", r.L.x,
+                               r.L.y, r.L.z);
+        }
     }
 }
 
 void inspector_section(Viewer& v) {
     ImGui::Checkbox("tooltip over the image", &v.state.inspector);
-    if (v.inspector.pinned) {
-        ImGui::SameLine();
-        if (ImGui::SmallButton("Unpin")) v.inspector.pinned = false;
+    if (!v.inspector.pinned) {
+        ImGui::TextDisabled("right click a pixel to pin it here");
+        return;
     }
-    probe_lines(v);
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Unpin")) v.inspector.pinned = false;
+    probe_lines(v, v.inspector.pin);
 }
 
 }  // namespace raylab::viewer

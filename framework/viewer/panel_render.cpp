@@ -120,7 +120,8 @@ void frame_overlay(Viewer& v) {
     char overlay[64];
     std::snprintf(overlay, sizeof overlay, "render time [ms], max %.1f", top);
     ImGui::PlotLines("##history", f.history_ms.data(), int(f.history_ms.size()), 0,
-                     overlay, 0.0f, top * 1.1f, ImVec2(-1.0f, 50.0f));
+                     overlay, 0.0f, top * 1.1f,
+                     ImVec2(ImGui::GetContentRegionAvail().x, 50.0f));
     ImGui::End();
 }
 

@@ -78,15 +78,21 @@ struct FrameState {
     int settled_frames = 0;  ///< frames drawn with the finished image (--frames)
 };
 
-/// The pixel inspector: the pixel under the mouse, and a pinned one.
+/// What the inspector knows about one pixel.
+struct PixelReport {
+    int i = -1, j = -1;                   ///< full-size pixel; -1: none
+    std::uint64_t job = 0;                ///< the frame the probes belong to
+    std::optional<PixelProbe> probe;      ///< with the current modules
+    std::optional<PixelProbe> reference;  ///< with all reference modules (if available)
+};
+
+/// The pixel inspector: the pixel under the mouse (tooltip) and a pinned one (panel).
 struct InspectorState {
     bool hovering = false;
     int i = 0, j = 0;  ///< full-size pixel under the mouse
     bool pinned = false;
     int pin_i = 0, pin_j = 0;
-    std::optional<PixelProbe> probe, reference;  ///< of the pinned (else hovered) pixel
-    std::uint64_t probed_job = 0;                ///< the frame the probes belong to
-    int probed_i = -1, probed_j = -1;
+    PixelReport hover, pin;
 };
 
 /// Keys and mouse between frames (input.cpp).
@@ -128,6 +134,7 @@ struct Viewer {
     bool texture_is_heat = false;  ///< the texture shows the difference heat map
     float panel_width = 430.0f;
     int extra_frames = 2;  ///< frames to draw before sleeping (ImGui settles)
+    bool screenshot_requested = false;  ///< F12: write the window at the end of a frame
     bool quit = false;
 };
 

@@ -104,8 +104,8 @@ SH
         --run-tests --frames 2 --report report > out.txt 2>&1 ||
         { cat out.txt; fail "the viewer failed"; }
     cat out.txt
-    grep -q "05_triangle .*crashed" out.txt || fail "no crash reported for 05_triangle"
-    grep -q "04_sphere .*2/3 passed" out.txt || fail "no result for 04_sphere"
+    grep -q "05_triangle  *crashed" out.txt || fail "no crash reported for 05_triangle"
+    grep -q "04_sphere  *2/3 passed" out.txt || fail "no result for 04_sphere"
     for f in view.txt settings.txt image.png log.txt; do
         [ -s "report/$f" ] || fail "report/$f missing"
     done
