@@ -103,8 +103,7 @@ bool scripted_run_done(Viewer& v, int& exit_code) {
 // F12: the window as it is now, before the buffers swap
 void take_screenshot(Viewer& v) {
     v.screenshot_requested = false;
-    const std::string path =
-        v.options.screenshot.empty() ? "raylab-window.png" : v.options.screenshot;
+    const std::string path = "raylab-window.png";
     int w = 0, h = 0;
     glfwGetFramebufferSize(v.window, &w, &h);
     try {
