@@ -5,6 +5,7 @@
 //   Q / E          light up / down              Ctrl+Q         quit
 //   left drag      orbit about the look-at      wheel          closer / farther
 //   right click    pin the pixel in the inspector
+//   F12            screenshot of the window: raylab-window.png
 //
 // Keys do nothing while an ImGui field has the keyboard (io.WantCaptureKeyboard), the
 // mouse nothing while it is over the panel (io.WantCaptureMouse).
