@@ -235,6 +235,24 @@ TEST_SUITE("viewer") {
         CHECK(h.v.state.scene.spheres.size() == 3);
     }
 
+    TEST_CASE("an OBJ loads in the background and replaces the scene") {
+        Headless h(parse({"--width", "16", "--height", "12"}));
+        const std::uint64_t version = h.v.state.scene_version;
+        const std::string path = temp_dir("obj") + "/triangle.obj";
+        std::ofstream(path) << "v -1 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        start_loading_scene(h.v, path);
+        REQUIRE(h.v.loading.valid());
+        h.v.loading.wait();
+        finish_loading(h.v);
+        CHECK(h.v.panel.error == "");
+        CHECK(h.v.state.scene_version == version + 1);
+        CHECK(h.v.state.scene.triangles.size() == 1);
+        CHECK(h.v.state.scene_source == path);
+        h.render();  // the worker receives the new geometry with the job
+        CHECK(h.v.frames.have_full);
+        CHECK(h.v.frames.last_full.camera_rays == 16 * 12);
+    }
+
     TEST_CASE("a preview renders at a fraction of the size while a value is dragged") {
         CHECK(preview_factor(10.0) == 1);
         CHECK(preview_factor(100.0) == 2);
