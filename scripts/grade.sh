@@ -131,13 +131,14 @@ for id in "${MODULES[@]}"; do
     [[ -n $object ]] || die "the scratch build has no object for $id.cpp"
     log=$OUT/logs/compile-$id.log
     if ! ninja -C "$BUILD" "$object" >"$log" 2>&1; then
-        fall_back "$id" "$id.cpp does not compile:
-$(compiler_message "$log")"
+        message=$(compiler_message "$log")
+        fall_back "$id" "$id.cpp does not compile: $(grep -m 1 'error' <<<"$message")
+$message"
         continue
     fi
     # Grading must see the student's own code, not a call into the reference
     calls=$(nm -C "$BUILD/$object" 2>/dev/null | grep -o 'U raylab::reference::[a-z_]*' |
-        sed 's/^U //' | sort -u | tr '\n' ' ' || true)
+        sed 's/^U //' | sort -u | paste -sd ' ' || true)
     if [[ -n $calls ]]; then
         fall_back "$id" "$id.cpp calls the reference solution ($calls), which is not allowed"
     fi
@@ -178,8 +179,10 @@ for attempt in 1 2 3; do
     progress=0
     for m in $(printf '%s\n' "${blamed[@]}" | sort -u); do
         [[ -n ${error[$m]:-} ]] && continue
-        fall_back "$m" "$m.cpp does not link with the framework (a function with another signature, or defined twice?):
-$(grep -e 'undefined reference' -e 'multiple definition' "$log" | sed "s|$STAGE/||g" | head -n 20)"
+        message=$(grep -e 'undefined reference' -e 'multiple definition' "$log" |
+            sed -e "s|$STAGE/||g" -e 's|^/usr/bin/ld: ||' | sort -u | head -n 20)
+        fall_back "$m" "$m.cpp does not link with the framework (is a function missing, defined with another signature, or defined twice?): $(head -n 1 <<<"$message")
+$message"
         progress=1
     done
     ((progress)) || die "building the graders failed: see $log

@@ -380,7 +380,10 @@ std::string module_output(const ModuleResult& m, size_t max_cases = 12) {
     s << m.info->id << " (" << m.info->title << "): " << m.passed << "/" << m.cases.size()
       << " tests passed, " << fixed(m.score) << " of " << fixed(m.max_score)
       << " points [" << m.status << "]\n";
-    if (!m.build_error.empty()) s << "\n" << shorten(m.build_error, 4000) << "\n";
+    if (!m.build_error.empty()) {
+        s << "\n" << shorten(m.build_error, 4000) << "\n";
+        return s.str();
+    }
     if (m.status == "time limit" || m.status.rfind("crashed", 0) == 0)
         s << m.first_failure << "\n";
     if (m.status == "not started") {

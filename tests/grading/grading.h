@@ -30,8 +30,10 @@ namespace raylab::grading {
 // double, Cramer's rule, Moeller-Trumbore, the geometric sphere test and any reasonable
 // epsilon, and tight enough that every real mistake is far outside them.
 namespace tol {
-/// Image-plane coordinates u, v (absolute; they lie within [-aspect/2, aspect/2]).
+/// Image-plane coordinates u, v (relative above 1, absolute below; |u| <= aspect / 2).
 inline constexpr double kImagePlane = 1e-6;
+/// Pixel values of the pixel loop's test pattern image (absolute; values in [0, 1]).
+inline constexpr double kPatternImage = 1e-4;
 /// Components of unit vectors computed from exact input: camera basis, ray and light
 /// directions (absolute).
 inline constexpr double kDirection = 1e-5;

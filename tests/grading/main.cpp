@@ -100,7 +100,13 @@ struct GradeLog : doctest::IReporter {
             line(std::string("crash\t") + current->m_test_suite + "\t" + current->m_name +
                  "\t" + escape(e.error_string.c_str()));
         } else {
-            note_failure(std::string("exception thrown: ") + e.error_string.c_str());
+            // The INFO context that was active when it was thrown
+            std::string what = std::string("exception thrown: ") + e.error_string.c_str();
+            const int n = get_num_stringified_contexts();
+            const doctest::String* contexts = get_stringified_contexts();
+            for (int k = n - 1; k >= 0; --k)
+                what += std::string("\n  ") + contexts[k].c_str();
+            note_failure(what);
         }
     }
     void subcase_start(const doctest::SubcaseSignature&) override {}

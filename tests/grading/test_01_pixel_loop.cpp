@@ -12,11 +12,9 @@ using namespace raylab::grading;
 
 namespace {
 
-// The image-plane point of pixel (i, j)'s centre, for hand-checked expectations
+// Compares an image-plane point with the expected (u, v)
 std::string diff_uv(const Vec2& got, double u, double v) {
-    if (std::abs(got.x - u) <= tol::kImagePlane &&
-        std::abs(got.y - v) <= tol::kImagePlane)
-        return "";
+    if (close(got.x, u, tol::kImagePlane) && close(got.y, v, tol::kImagePlane)) return "";
     return "expected (u, v) = " + show(Vec2(float(u), float(v))) + ", got " + show(got);
 }
 
@@ -216,12 +214,22 @@ TEST_SUITE("01_pixel_loop") {
             const float ring = std::cos(40.0f * glm::length(uv));
             return Vec3(0.5f + 0.5f * ring, uv.x + 0.5f, uv.y + 0.5f);
         };
+        // The image sits inside a larger buffer, so that writes past its end are reported
+        // instead of corrupting memory
+        const int margin = W * S;
+        bool outside = false;
         const auto render = [&](auto&& tile_fn) {
-            Image image(W, H, Vec3(-1.0f));
+            std::vector<Vec3> buffer(size_t(W * H + 2 * margin), Vec3(-1.0f));
             for (int y0 = 0; y0 < H; y0 += S)
                 for (int x0 = 0; x0 < W; x0 += S)
                     tile_fn(Tile{x0, y0, std::min(x0 + S, W), std::min(y0 + S, H)},
-                            pattern, image.view());
+                            pattern, ImageView{buffer.data() + margin, W, H});
+            for (int k = 0; k < margin; ++k)
+                outside = outside || buffer[size_t(k)] != Vec3(-1.0f) ||
+                          buffer[buffer.size() - 1 - size_t(k)] != Vec3(-1.0f);
+            Image image(W, H);
+            std::copy(buffer.begin() + margin, buffer.end() - margin,
+                      image.pixels.begin());
             return image;
         };
         const Image want = expected_image("01_pixel_loop", "pattern", [&] {
@@ -233,6 +241,7 @@ TEST_SUITE("01_pixel_loop") {
         const std::string saved = save_image("01_pixel_loop-pattern", got);
         INFO("37 x 23 image in 16 x 16 tiles"
              << (saved.empty() ? "" : "; saved as " + saved));
+        RAYLAB_CHECK(!outside, "the pixel loop wrote outside the image's pixels");
         REQUIRE(want.width == W);
         REQUIRE(want.height == H);
         int bad = 0;
@@ -240,7 +249,7 @@ TEST_SUITE("01_pixel_loop") {
         for (int j = 0; j < H; ++j) {
             for (int i = 0; i < W; ++i) {
                 const std::string why =
-                    diff_radiance("value", got.at(i, j), want.at(i, j));
+                    diff_vec("value", got.at(i, j), want.at(i, j), tol::kPatternImage);
                 if (!why.empty() && bad++ == 0)
                     first = "pixel (" + std::to_string(i) + ", " + std::to_string(j) +
                             ") " + why;

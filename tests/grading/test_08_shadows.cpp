@@ -47,7 +47,7 @@ class FakeScene : public Occluder {
         if (has_surface)
             s += "the surface through " + show(surface_point) + " with normal " +
                  show(surface_n) + "; ";
-        return s.empty() ? "nothing" : s;
+        return s.empty() ? std::string("nothing") : s;
     }
 
   private:
@@ -87,11 +87,11 @@ bool check(const FakeScene& scene, const Vec3& x, const Vec3& n, const LightSamp
     std::string rays;
     for (const Ray& r : scene.rays)
         rays += "\n    " + show(r);
-    return RAYLAB_CHECK(
-        got == want, "expected "
-                         << (want ? "in shadow" : "lit") << ", got "
-                         << (got ? "in shadow" : "lit")
-                         << "; the shadow rays were:" << (rays.empty() ? " none" : rays));
+    const std::string verdict[] = {"lit", "in shadow"};
+    if (rays.empty()) rays = " none";
+    return RAYLAB_CHECK(got == want, "expected " << verdict[want] << ", got "
+                                                 << verdict[got]
+                                                 << "; the shadow rays were:" << rays);
 }
 
 FakeScene balls(std::initializer_list<FakeScene::Ball> list) {
@@ -163,8 +163,9 @@ TEST_SUITE("08_shadows") {
 
     TEST_CASE(
         "a blocker just before the light casts a shadow, one just past it does not") {
-        check(balls({{Vec3(0, 3.8f, 0), 0.05}}), Vec3(0.0f), kUp, kAbove, true);
-        check(balls({{Vec3(0, 4.2f, 0), 0.05}}), Vec3(0.0f), kUp, kAbove, false);
+        // Balls of radius 0.02 at 1% of the distance before and after the light at 4
+        check(balls({{Vec3(0, 3.96f, 0), 0.02}}), Vec3(0.0f), kUp, kAbove, true);
+        check(balls({{Vec3(0, 4.04f, 0), 0.02}}), Vec3(0.0f), kUp, kAbove, false);
     }
 
     TEST_CASE("a blocker behind the surface point casts no shadow") {
