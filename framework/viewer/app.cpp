@@ -43,8 +43,9 @@ GLFWwindow* open_window(const ViewerOptions& o, const std::string& scene) {
                             nullptr);
 }
 
-// Sleep until something happens: a key held needs a steady frame rate, a render in
-// flight wakes us with an empty event, and nothing at all sleeps (idle CPU near zero)
+// Sleep until something happens: a key held needs a steady frame rate; the render
+// worker and the graders wake us with an empty event when they have news, so a frame in
+// flight costs no UI frames; nothing at all sleeps (idle CPU near zero)
 void wait_for_events(Viewer& v) {
     if (v.options.frames > 0) {
         if (v.worker->busy() || v.grading->running()) {
@@ -56,13 +57,13 @@ void wait_for_events(Viewer& v) {
         glfwPollEvents();
     } else if (camera_keys_held(v)) {
         glfwWaitEventsTimeout(1.0 / 60.0);
-    } else if (v.worker->busy() || v.grading->running() || v.loading.valid()) {
-        glfwWaitEventsTimeout(0.25);
+    } else if (v.loading.valid()) {
+        glfwWaitEventsTimeout(0.25);  // a loading OBJ posts no event: look now and then
     } else {
         glfwWaitEvents();
     }
     if (v.input.events) {
-        v.extra_frames = 3;  // ImGui settles hover and layout over a few frames
+        v.extra_frames = 2;  // ImGui settles hover and layout over a frame or two
         v.input.events = false;
     } else if (v.extra_frames > 0) {
         --v.extra_frames;
