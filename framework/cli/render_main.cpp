@@ -82,7 +82,8 @@ int main(int argc, char** argv) {
                     static_cast<unsigned long long>(stats.bvh_nodes));
         if (stats.non_finite_pixels > 0) {
             std::printf(
-                "warning: %llu pixels are NaN or infinite (written as black): a module "
+                "warning: %llu pixels are NaN or infinite (NaN writes as 0, +inf as "
+                "255): a module "
                 "returned an invalid value\n",
                 static_cast<unsigned long long>(stats.non_finite_pixels));
         }

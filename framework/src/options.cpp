@@ -60,7 +60,8 @@ std::string options_help() {
   --fov DEGREES         vertical field of view in (0, 180); camera constant d = 1/(2 tan(fov/2))
   --light X,Y,Z:R,G,B   point light at X,Y,Z with intensity R,G,B [W/sr]; repeatable;
                         replaces the scene's lights
-  --ambient A           constant indirect light, times rho (COMS30115 uses 0.5)
+  --ambient A           constant indirect light, times rho (the COMS30115 lab's 0.5
+                        without its missing 1/pi is 0.159; see docs/conventions.md)
 Rendering:
   --width W --height H  image size in pixels (default 640 x 480)
   --mode MODE           lambert (default), normals, base, depth
