@@ -127,13 +127,11 @@ int exit_actions(Viewer& v) {
 
 }  // namespace
 
-int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
-    // Setup: flags and files first, so that their errors come before any window
-    auto v = std::make_unique<Viewer>();
-    v->exe_path = self_path();
-    init_viewer(*v, options, viewer_options, [] { glfwPostEmptyEvent(); });
+namespace {
 
-    // Setup: window and OpenGL 3.3 core context
+// Setup: GLFW window with an OpenGL 3.3 core context, then Dear ImGui with the GLFW and
+// OpenGL 3 backends. False (with a message) when there is no display or no context
+bool setup_window(Viewer& v) {
     glfwSetErrorCallback(on_glfw_error);
     if (!glfwInit()) {
         const char* display = std::getenv("DISPLAY");
@@ -143,29 +141,49 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
             "window with raylab-render, or start the viewer under xvfb-run.\n",
             display && *display ? "no usable display" : "no display, DISPLAY is not set",
             glfw_last_error.c_str());
-        return 2;
+        return false;
     }
-    v->window = open_window(viewer_options, v->state.scene_source);
-    if (!v->window) {
+    v.window = open_window(v.options, v.state.scene_source);
+    if (!v.window) {
         std::fprintf(stderr, "raylab: error: cannot open an OpenGL 3.3 window (%s)\n",
                      glfw_last_error.c_str());
-        v.reset();
         glfwTerminate();
-        return 2;
+        return false;
     }
-    glfwMakeContextCurrent(v->window);
-    glfwSwapInterval(1);    // vsync where the display has it
-    install_callbacks(*v);  // before the backend, which chains them
+    glfwMakeContextCurrent(v.window);
+    glfwSwapInterval(1);   // vsync where the display has it
+    install_callbacks(v);  // before the backend, which chains them
 
-    // Setup: Dear ImGui with the GLFW and OpenGL 3 backends
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
-    ImGuiIO& io = ImGui::GetIO();
-    io.IniFilename = nullptr;  // no imgui.ini in the student's folder
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the student's folder
     ImGui::StyleColorsDark();
-    ImGui_ImplGlfw_InitForOpenGL(v->window, true);
+    ImGui_ImplGlfw_InitForOpenGL(v.window, true);
     ImGui_ImplOpenGL3_Init("#version 330 core");
-    v->texture = create_texture();
+    v.texture = create_texture();
+    return true;
+}
+
+// Cleanup: stop the threads (they post GLFW events) before GLFW goes
+void cleanup(Viewer& v) {
+    delete_texture(v.texture);
+    v.worker.reset();
+    v.grading.reset();
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    glfwDestroyWindow(v.window);
+    glfwTerminate();
+}
+
+}  // namespace
+
+int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
+    // Setup: flags and files first, so that their errors come before any window
+    auto v = std::make_unique<Viewer>();
+    v->exe_path = self_path();
+    init_viewer(*v, options, viewer_options, [] { glfwPostEmptyEvent(); });
+    if (!setup_window(*v)) return 2;
     if (viewer_options.run_tests) run_tests(*v);
 
     // Main loop
@@ -207,17 +225,7 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
         glfwSwapBuffers(v->window);
     }
     const int exit_status = exit_actions(*v);
-
-    // Cleanup: stop the threads (they post GLFW events) before GLFW goes
-    delete_texture(v->texture);
-    v->worker.reset();
-    v->grading.reset();
-    ImGui_ImplOpenGL3_Shutdown();
-    ImGui_ImplGlfw_Shutdown();
-    ImGui::DestroyContext();
-    glfwDestroyWindow(v->window);
-    v.reset();
-    glfwTerminate();
+    cleanup(*v);
     return exit_code != 0 ? exit_code : exit_status;
 }
 
