@@ -2,7 +2,7 @@
 #   make run                                 viewer (or build/cornell.png without a display)
 #   make run ARGS="--reference all"          extra flags for the viewer / raylab-render
 #   make test                                what CI runs
-#   make grade SUBMISSION=~/handin GRADE_OUT=report.md
+#   make grade SUBMISSION=~/handin GRADE_OUT=grades/alice
 #   make release OUT=/tmp/raylab-student
 # `make help` lists everything. Variables: ARGS, SUBMISSION, GRADE_OUT, OUT.
 

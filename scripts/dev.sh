@@ -10,12 +10,12 @@
 #                      then every test in build/ (GUI tests under Xvfb)
 #   build              configure and build build/ (Release)
 #   grade [ARGS]       grade exercises (scripts/grade.sh); env SUBMISSION=DIR grades a hand-in,
-#                      GRADE_OUT=FILE chooses the report file
+#                      GRADE_OUT=DIR chooses where the reports go (default build/grade/)
 #   grade-reference    grade the reference solutions (scripts/grade.sh --reference)
 #   release [OUT]      make the student release (scripts/make-student-release.sh)
 #   bench [ARGS]       build with Embree and run build/bench/raylab-bench ARGS
 #   format             apply clang-format to the tracked C++ sources
-#   clean              delete the build folders (build/, build-asan/, build-debug/, build-release/)
+#   clean              delete the build folders (build/ and every build-*/)
 #   help               this text
 #
 # Environment: RAYLAB_NO_INSTALL=1 skips the package check (non-Debian systems);
@@ -250,8 +250,13 @@ cmd_format() {
 }
 
 cmd_clean() {
-    step "Deleting build/ build-asan/ build-debug/ build-release/"
-    rm -rf build build-asan build-debug build-release
+    step "Deleting build/ and build-*/ (all generated; .gitignore lists them)"
+    local d
+    for d in build build-*/; do
+        [[ -d $d ]] || continue
+        rm -rf "${d%/}"
+        note "deleted ${d%/}/"
+    done
 }
 
 # ---- Dispatch --------------------------------------------------------------------------
