@@ -10,6 +10,8 @@
 #include <mutex>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "actions.h"
 #include "grader.h"
 #include "raylab/error.h"
@@ -21,9 +23,11 @@ using namespace raylab::viewer;
 
 namespace {
 
+// A fresh folder per test case and process (ctest runs test cases in parallel)
 std::string temp_dir(const std::string& name) {
     const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / ("raylab-viewer-tests-" + name);
+        std::filesystem::temp_directory_path() /
+        ("raylab-viewer-tests-" + std::to_string(getpid()) + "-" + name);
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir.string();
@@ -32,8 +36,8 @@ std::string temp_dir(const std::string& name) {
 // A stand-in for raylab-grading-tests: a shell script that passes 03_plane, fails one
 // case of 04_sphere and crashes in 05_triangle. doctest counts the cases of the other
 // suites, filtered out by --test-suite, as "skipped"
-std::string fake_grader() {
-    const std::string path = temp_dir("grader") + "/fake-grader.sh";
+std::string fake_grader(const std::string& test) {
+    const std::string path = temp_dir(test) + "/fake-grader.sh";
     std::ofstream(path)
         << "#!/bin/sh\n"
            "case \"$1\" in\n"
@@ -119,7 +123,7 @@ TEST_SUITE("viewer") {
     }
 
     TEST_CASE("graders that pass, fail or crash are told apart") {
-        const std::string grader = fake_grader();
+        const std::string grader = fake_grader("grades");
         const ModuleGrade plane = grade_module(grader, "03_plane", 30.0);
         CHECK(plane.status == ModuleGrade::Status::passed);
         CHECK(plane.summary == "4/4 passed");
@@ -135,7 +139,7 @@ TEST_SUITE("viewer") {
     }
 
     TEST_CASE("RAYLAB_GRADING_TESTS names the grading binary") {
-        const std::string grader = fake_grader();
+        const std::string grader = fake_grader("find");
         setenv("RAYLAB_GRADING_TESTS", grader.c_str(), 1);
         CHECK(find_grading_binary("/anywhere/raylab") == grader);
         setenv("RAYLAB_GRADING_TESTS", "/no/such/grader", 1);
