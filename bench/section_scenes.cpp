@@ -105,12 +105,12 @@ std::vector<QuerySet> query_sets(const Scene& scene, const ModuleTable& modules,
     return sets;
 }
 
-void bench_scene(const std::string& name, Scene& scene, const ModuleTable& modules,
-                 const BenchOptions& opt, std::uint64_t stream, Tables& tables) {
-    // Build times: raylab's commit (validation + binned SAH build, one thread), Embree's
-    // rtcCommitScene on a one-thread device
+// Build times: raylab's commit (validation + binned SAH build, one thread), Embree's
+// rtcCommitScene on a one-thread device, with and without RTC_SCENE_FLAG_ROBUST. Leaves
+// the last Embree scenes in peer (null without Embree).
+void bench_build(const std::string& name, Scene& scene, const BenchOptions& opt,
+                 std::unique_ptr<PeerScene> (&peer)[2], Tables& tables) {
     const double commit_s = median_seconds(opt.repeats, [&] { scene.commit(); });
-    std::unique_ptr<PeerScene> peer[2];
     double build_s[2] = {NAN, NAN};
     for (int robust = 0; robust < 2 && peer_available(); ++robust) {
         std::vector<double> s;
@@ -124,7 +124,12 @@ void bench_scene(const std::string& name, Scene& scene, const ModuleTable& modul
                       fmt("%.2f", 1e3 * commit_s), fmt("%zu", scene.bvh().node_count()),
                       peer[0] ? fmt("%.2f", 1e3 * build_s[0]) : "-",
                       peer[1] ? fmt("%.2f", 1e3 * build_s[1]) : "-"});
+}
 
+void bench_scene(const std::string& name, Scene& scene, const ModuleTable& modules,
+                 const BenchOptions& opt, std::uint64_t stream, Tables& tables) {
+    std::unique_ptr<PeerScene> peer[2];
+    bench_build(name, scene, opt, peer, tables);
     const std::vector<QuerySet> sets = query_sets(scene, modules, opt, stream);
     for (const QuerySet& q : sets) {
         // Work counts from one untimed pass; then raylab and the peers interleaved
