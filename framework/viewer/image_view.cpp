@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 #include "gl_image.h"
 #include "panel.h"
@@ -70,6 +71,30 @@ void track_mouse(Viewer& v, const ImageRect& r) {
     }
 }
 
+// A stub renders black or nothing: say so on the image instead of leaving a student
+// with a black picture (STYLE.md anti-pattern 2)
+void stub_note(const Viewer& v, const ImageRect& r) {
+    std::string names;
+    for (const ModuleInfo& info : module_infos()) {
+        const bool stub = v.state.stubs & (1u << static_cast<int>(info.module));
+        if (stub && v.state.modules[info.module] == Impl::student)
+            names += (names.empty() ? "" : ", ") + std::string(info.name);
+    }
+    if (names.empty()) return;
+    const std::string text = "still stubs (not started): " + names;
+    ImDrawList* draw = ImGui::GetBackgroundDrawList();
+    // Below the image where there is room (the image itself stays clean for
+    // screenshots), else over its bottom edge
+    const float below = r.y + r.height + 6.0f;
+    const bool room = below + 20.0f <= ImGui::GetIO().DisplaySize.y;
+    const ImVec2 at(r.x + 6.0f, room ? below : r.y + r.height - 22.0f);
+    const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+    draw->AddRectFilled(ImVec2(at.x - 3, at.y - 2),
+                        ImVec2(at.x + size.x + 3, at.y + size.y + 2),
+                        IM_COL32(0, 0, 0, 170));
+    draw->AddText(at, IM_COL32(255, 190, 90, 255), text.c_str());
+}
+
 }  // namespace
 
 void draw_image(Viewer& v) {
@@ -88,6 +113,7 @@ void draw_image(Viewer& v) {
     if (v.frames.shown_preview) {
         draw->AddText(ImVec2(r.x + 6, r.y + 4), IM_COL32(255, 255, 255, 200), "preview");
     }
+    stub_note(v, r);
     track_mouse(v, r);
 
     // The pinned pixel, outlined
