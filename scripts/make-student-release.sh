@@ -1,0 +1,160 @@
+#!/usr/bin/env bash
+# Writes the student release of raylab and checks it.
+#
+# Usage: scripts/make-student-release.sh [OUT]      (also: make release OUT=DIR)
+#   OUT defaults to build/student-release/raylab. An existing OUT is replaced only if it
+#   is an earlier release (it holds .raylab-release).
+#
+# The release is this tree without what students must not have or cannot build: solutions/
+# (the reference), bench/ and tests/stress/ (they measure the reference), the instructor
+# guide and the benchmark notes. In their place it gets:
+#   tests/data/golden/    the reference's answers to every grading case, written now by the
+#                         reference, so that the graders work without solutions/
+#   tests/grading/stubs/  the untouched exercise files, which scripts/grade.sh compiles in
+#                         place of a hand-in's missing or broken file
+# Then it checks the release in a scratch folder: it configures and builds with warnings as
+# errors, starts the viewer under Xvfb (when the viewer and xvfb-run exist), and grades
+# the untouched exercises with scripts/grade.sh, which must find every module not started.
+#
+# Environment: RELEASE_BUILD_DIR=DIR, the build of this tree that writes the golden data
+# (default build-student-release/); RELEASE_KEEP_CHECK=1 keeps the scratch check folder.
+set -euo pipefail
+# shellcheck source=lib/common.sh
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
+
+usage() { sed -n '2,/^[^#]/{/^#/s/^# \{0,1\}//p}' "$0"; }
+case ${1:-} in -h | --help) usage; exit 0 ;; esac
+(($# <= 1)) || { usage >&2; die "too many arguments"; }
+
+absolute() { [[ $1 == /* ]] && printf '%s' "$1" || printf '%s/%s' "$PWD" "$1"; }
+OUT=$(absolute "${1:-$RAYLAB_ROOT/build/student-release/raylab}")
+BUILD=$(absolute "${RELEASE_BUILD_DIR:-$RAYLAB_ROOT/build-student-release}")
+MODULES=(01_pixel_loop 02_camera 03_plane 04_sphere 05_triangle 06_point_light 07_lambert
+    08_shadows)
+t0=$SECONDS
+
+have cmake || die "cmake is missing: scripts/install-deps.sh build"
+have ninja || die "ninja is missing: scripts/install-deps.sh build"
+[[ -f $RAYLAB_ROOT/solutions/01_pixel_loop.cpp ]] ||
+    die "this tree has no solutions/: a release can only be made from the instructor's tree"
+case $OUT in
+    "$RAYLAB_ROOT" | "$RAYLAB_ROOT/" | /) die "OUT must not be $OUT" ;;
+esac
+if [[ -e $OUT ]]; then
+    [[ -f $OUT/.raylab-release ]] ||
+        die "$OUT exists and is not an earlier raylab release: choose another OUT"
+    rm -rf "$OUT"
+fi
+
+# ---- The exercise files must be the untouched stubs -----------------------------------
+
+step "Checking that exercises/ holds the stubs"
+for id in "${MODULES[@]}"; do
+    grep -q "RAYLAB_STUB(\"$id\")" "$RAYLAB_ROOT/exercises/$id.cpp" ||
+        die "exercises/$id.cpp does not call RAYLAB_STUB: is a solution in exercises/?"
+    if grep -q 'raylab::reference' "$RAYLAB_ROOT/exercises/$id.cpp"; then
+        die "exercises/$id.cpp mentions raylab::reference"
+    fi
+done
+
+# ---- Copy ------------------------------------------------------------------------------
+
+# What never goes to students
+excluded() {
+    case $1 in
+        solutions/* | bench/* | tests/stress/* | docs/instructor-guide.md | docs/benchmarks.md | \
+            tests/data/golden/* | build*/*) return 0 ;;
+    esac
+    return 1
+}
+
+step "Copying the release to $OUT/"
+mkdir -p "$OUT"
+if git -C "$RAYLAB_ROOT" rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+    list_files() { git -C "$RAYLAB_ROOT" ls-files; }
+    commit=$(git -C "$RAYLAB_ROOT" rev-parse --short HEAD)
+    git -C "$RAYLAB_ROOT" diff --quiet HEAD -- . 2>/dev/null || commit="$commit + local changes"
+else
+    list_files() { (cd "$RAYLAB_ROOT" && find . -path './build*' -prune -o -type f -printf '%P\n'); }
+    commit=unknown
+fi
+count=0
+while IFS= read -r f; do
+    excluded "$f" && continue
+    [[ -f $RAYLAB_ROOT/$f ]] || continue # deleted but not yet committed
+    mkdir -p "$OUT/$(dirname "$f")"
+    cp -p "$RAYLAB_ROOT/$f" "$OUT/$f"
+    count=$((count + 1))
+done < <(list_files)
+mkdir -p "$OUT/tests/grading/stubs" "$OUT/tests/data/golden"
+cp "$RAYLAB_ROOT"/exercises/*.cpp "$OUT/tests/grading/stubs/"
+printf 'raylab student release of %s, made %s\n' "$commit" "$(date -u +%Y-%m-%dT%H:%MZ)" \
+    >"$OUT/.raylab-release"
+note "$count files; no solutions/, bench/, tests/stress/ or instructor guide"
+
+# ---- Golden data, written by the reference -----------------------------------------------
+
+step "Writing the golden data with the reference (build in $BUILD/)"
+cmake -S "$RAYLAB_ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WITH_GUI=OFF \
+    -DRAYLAB_EXERCISES_DIR="$RAYLAB_ROOT/exercises" >"$BUILD.configure.log" 2>&1 ||
+    die "configuring $BUILD/ failed: see $BUILD.configure.log"
+ninja -C "$BUILD" raylab-grading-tests >"$BUILD.build.log" 2>&1 ||
+    die "building the graders failed: see $BUILD.build.log"
+RAYLAB_GRADE_IMPL=reference RAYLAB_GOLDEN_WRITE="$OUT/tests/data/golden" \
+    "$BUILD/tests/grading/raylab-grading-tests" --no-colors >"$BUILD.golden.log" 2>&1 ||
+    die "the reference fails its own graders: see $BUILD.golden.log"
+grep '^\[raylab\] wrote' "$BUILD.golden.log" | sed 's/^\[raylab\] /    /'
+if ! diff -rq "$RAYLAB_ROOT/tests/data/golden" "$OUT/tests/data/golden" >/dev/null; then
+    warn "tests/data/golden/ in this tree differs from what the reference writes now;" \
+        "refresh it: ninja -C <build> raylab-update-golden"
+fi
+
+# ---- Check the release -------------------------------------------------------------------
+
+[[ ! -e $OUT/solutions ]] || die "the release holds solutions/"
+leaks=$(grep -rl 'raylab::reference::[a-z_]*(' "$OUT/exercises" "$OUT/tests/grading" || true)
+[[ -z $leaks ]] || die "these release files call the reference: $leaks"
+
+CHECK=$(mktemp -d "${TMPDIR:-/tmp}/raylab-release-check.XXXXXX")
+cleanup() { [[ ${RELEASE_KEEP_CHECK:-} == 1 ]] || rm -rf "$CHECK"; }
+trap cleanup EXIT
+
+step "Check 1: the release builds (warnings as errors) in $CHECK/build"
+cmake -S "$OUT" -B "$CHECK/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WERROR=ON \
+    >"$CHECK/configure.log" 2>&1 || {
+    cat "$CHECK/configure.log" >&2
+    die "the release does not configure"
+}
+grep -E '^-- raylab' "$CHECK/configure.log" | sed 's/^/    /' || true
+ninja -C "$CHECK/build" >"$CHECK/build.log" 2>&1 || {
+    tail -n 40 "$CHECK/build.log" >&2
+    die "the release does not build"
+}
+note "built"
+
+step "Check 2: the viewer starts"
+viewer=$CHECK/build/framework/viewer/raylab
+if [[ ! -x $viewer ]]; then
+    note "SKIPPED: no viewer was built (RAYLAB_WITH_GUI needs libglfw3-dev and libimgui-dev)"
+elif ! have xvfb-run; then
+    note "SKIPPED: xvfb-run is missing (scripts/install-deps.sh gui)"
+else
+    xvfb-run -a -s '-screen 0 1280x800x24' "$viewer" --frames 3 \
+        --screenshot "$CHECK/viewer.png" >"$CHECK/viewer.log" 2>&1 || {
+        cat "$CHECK/viewer.log" >&2
+        die "the viewer of the release does not start"
+    }
+    [[ -s $CHECK/viewer.png ]] || die "the viewer wrote no screenshot"
+    note "the viewer ran 3 frames under Xvfb and wrote a screenshot"
+fi
+
+step "Check 3: the graders run on the untouched exercises and score zero"
+GRADE_OUT=$CHECK/grade GRADE_BUILD_DIR=$CHECK/grade-build SUBMISSION='' \
+    bash "$OUT/scripts/grade.sh" --expect not-started >"$CHECK/grade.log" 2>&1 || {
+    cat "$CHECK/grade.log" >&2
+    die "the graders of the release did not score the stubs zero"
+}
+sed -n '/^raylab grade:/,/^total/p' "$CHECK/grade.log" | sed 's/^/    /'
+
+step "Student release ready in $OUT/ ($((SECONDS - t0)) s)"
+note "from $commit; hand it out as it is, e.g. tar -C $(dirname "$OUT") -czf raylab.tar.gz $(basename "$OUT")"
