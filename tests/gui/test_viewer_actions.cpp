@@ -270,3 +270,25 @@ TEST_SUITE("viewer") {
         CHECK_FALSE(h.v.frames.have_full);
     }
 }
+
+TEST_SUITE("viewer") {
+    TEST_CASE("the inspector probes the pinned pixel as the renderer traces it") {
+        Headless h(parse({"--width", "16", "--height", "12"}));
+        h.v.inspector.pinned = true;
+        h.v.inspector.pin_i = 8;
+        h.v.inspector.pin_j = 6;
+        update_probes(h.v);
+        REQUIRE(h.v.inspector.pin.probe);
+        const ViewerState& s = h.v.state;
+        const PixelProbe direct =
+            probe_pixel(s.scene, s.view, s.settings, ModuleTable::make(s.modules), 8, 6);
+        CHECK(h.v.inspector.pin.probe->uv == direct.uv);
+        CHECK(h.v.inspector.pin.probe->L == direct.L);
+        CHECK(h.v.inspector.pin.probe->hit.has_value() == direct.hit.has_value());
+        // Nothing hovered: no tooltip probe; unpinned: the pinned probe goes
+        CHECK_FALSE(h.v.inspector.hover.probe);
+        h.v.inspector.pinned = false;
+        update_probes(h.v);
+        CHECK_FALSE(h.v.inspector.pin.probe);
+    }
+}
