@@ -55,7 +55,9 @@ void scene_section(Viewer& v) {
     if (ImGui::SliderFloat("ambient", &s.scene.ambient, 0.0f, 1.0f, "%.2f"))
         s.dirty = true;
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("constant indirect light, times rho (COMS30115 uses 0.5)");
+        ImGui::SetTooltip(
+            "constant indirect light, times rho: the COMS30115 lab's 0.5 without its\n"
+            "missing 1/pi is 0.159 (docs/conventions.md)");
 }
 
 void camera_section(Viewer& v) {
