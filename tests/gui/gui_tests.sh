@@ -42,15 +42,20 @@ flags=(--scene cornell --width 320 --height 240 --eye 0.4,0.3,2.8 --fov 60)
 case $case_name in
 screenshot)
     need xvfb-run
-    "$render" "${flags[@]}" --output render.png > render.txt || fail "raylab-render failed"
+    "$render" "${flags[@]}" --output render.png > render.txt ||
+        fail "raylab-render failed"
     xvfb "$viewer" "${flags[@]}" --image-scale 1 --window 1000x600 --frames 3 \
         --screenshot shot.png --save-image saved.png > out.txt 2>&1 ||
         { cat out.txt; fail "the viewer failed"; }
     cat out.txt
     # "screenshot shot.png: window 1000x600, image at X,Y size WxH"
-    read -r x y w h < <(sed -n 's/.*image at \([0-9]*\),\([0-9]*\) size \([0-9]*\)x\([0-9]*\).*/\1 \2 \3 \4/p' out.txt)
-    [ "${w:-}" = 320 ] && [ "${h:-}" = 240 ] || fail "image region not 320x240: '$x $y $w $h'"
-    "$png_diff" saved.png render.png --tolerance 0 || fail "saved image differs from raylab-render"
+    n='\([0-9]*\)'
+    read -r x y w h < <(sed -n "s/.*image at $n,$n size ${n}x$n.*/\\1 \\2 \\3 \\4/p" \
+        out.txt)
+    [ "${w:-}" = 320 ] && [ "${h:-}" = 240 ] ||
+        fail "image region not 320x240: '${x:-} ${y:-} ${w:-} ${h:-}'"
+    "$png_diff" saved.png render.png --tolerance 0 ||
+        fail "saved image differs from raylab-render"
     "$png_diff" shot.png render.png --crop "$x,$y,$w,$h" --tolerance 2 ||
         fail "window region differs from raylab-render"
     ;;
@@ -60,7 +65,8 @@ keys)
     drive 'xdotool mousemove --window "$wid" 900 300
            xdotool keydown Up; sleep 0.4; xdotool keyup Up
            xdotool keydown w; sleep 0.4; xdotool keyup w
-           xdotool mousedown 1; for s in 1 2 3 4 5 6; do xdotool mousemove_relative 10 0; sleep 0.05; done
+           xdotool mousedown 1
+           for s in 1 2 3 4 5 6; do xdotool mousemove_relative 10 0; sleep 0.05; done
            xdotool mouseup 1; sleep 0.2' --width 160 --height 120 ||
         { cat out.txt; fail "the viewer failed"; }
     cat out.txt view.txt
@@ -70,13 +76,18 @@ keys)
     # Start: eye (0,0,3), look-at 0, light (0,0.5,0.7). Walking moves the look-at to
     # z < 0 (the eye too, but the orbit then moves it); the orbit swings the eye
     # sideways at the same distance 3; W moves the light towards -z
-    awk -v lz="$lz" 'BEGIN { exit !(lz < -0.01) }' || fail "Up did not walk: lookat z = $lz"
-    awk -v ex="$ex" 'BEGIN { exit !(ex > 0.01 || ex < -0.01) }' || fail "drag did not orbit: eye x = $ex"
+    awk -v lz="$lz" 'BEGIN { exit !(lz < -0.01) }' ||
+        fail "Up did not walk: lookat z = $lz"
+    awk -v ex="$ex" 'BEGIN { exit !(ex > 0.01 || ex < -0.01) }' ||
+        fail "drag did not orbit: eye x = $ex"
     awk -v ex="$ex" -v ey="$ey" -v ez="$ez" -v lx="$lx" -v ly="$ly" -v lz="$lz" \
-        'BEGIN { d = sqrt((ex-lx)^2 + (ey-ly)^2 + (ez-lz)^2); exit !(d > 2.999 && d < 3.001) }' ||
+        'BEGIN { d = sqrt((ex-lx)^2 + (ey-ly)^2 + (ez-lz)^2)
+                 exit !(d > 2.999 && d < 3.001) }' ||
         fail "orbit changed the distance"
-    awk -v pz="$pz" 'BEGIN { exit !(pz < 0.69) }' || fail "W did not move the light: z = $pz"
-    awk -v py="$py" 'BEGIN { exit !(py > 0.4999 && py < 0.5001) }' || fail "W moved the light up"
+    awk -v pz="$pz" 'BEGIN { exit !(pz < 0.69) }' ||
+        fail "W did not move the light: z = $pz"
+    awk -v py="$py" 'BEGIN { exit !(py > 0.4999 && py < 0.5001) }' ||
+        fail "W moved the light up"
     ;;
 focus)
     need xvfb-run; need xdotool
@@ -86,7 +97,8 @@ focus)
            xdotool type --delay 50 wasd; sleep 0.2' --width 160 --height 120 ||
         { cat out.txt; fail "the viewer failed"; }
     cat out.txt view.txt
-    [ "$(field view.txt eye)" = "0 0 3" ] || fail "keys moved the camera while a field had focus"
+    [ "$(field view.txt eye)" = "0 0 3" ] ||
+        fail "keys moved the camera while a field had focus"
     [ "$(field view.txt light)" = "0 0.5 0.699999988" ] ||
         fail "keys moved the light while a field had focus: $(field view.txt light)"
     ;;
@@ -109,7 +121,8 @@ SH
     for f in view.txt settings.txt image.png log.txt; do
         [ -s "report/$f" ] || fail "report/$f missing"
     done
-    grep -q "raylab-render --scene cornell" report/settings.txt || fail "no command in report"
+    grep -q "raylab-render --scene cornell" report/settings.txt ||
+        fail "no command in report"
     ;;
 no-display)
     env -u DISPLAY -u WAYLAND_DISPLAY "$viewer" --frames 1 > out.txt 2> err.txt
