@@ -95,15 +95,16 @@ note "$count files; no solutions/, bench/, tests/stress/ or instructor guide"
 # ---- Golden data, written by the reference -----------------------------------------------
 
 step "Writing the golden data with the reference (build in $BUILD/)"
+mkdir -p "$BUILD"
 cmake -S "$RAYLAB_ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WITH_GUI=OFF \
-    -DRAYLAB_EXERCISES_DIR="$RAYLAB_ROOT/exercises" >"$BUILD.configure.log" 2>&1 ||
-    die "configuring $BUILD/ failed: see $BUILD.configure.log"
-ninja -C "$BUILD" raylab-grading-tests >"$BUILD.build.log" 2>&1 ||
-    die "building the graders failed: see $BUILD.build.log"
+    -DRAYLAB_EXERCISES_DIR="$RAYLAB_ROOT/exercises" >"$BUILD/release-configure.log" 2>&1 ||
+    die "configuring $BUILD/ failed: see $BUILD/release-configure.log"
+ninja -C "$BUILD" raylab-grading-tests >"$BUILD/release-build.log" 2>&1 ||
+    die "building the graders failed: see $BUILD/release-build.log"
 RAYLAB_GRADE_IMPL=reference RAYLAB_GOLDEN_WRITE="$OUT/tests/data/golden" \
-    "$BUILD/tests/grading/raylab-grading-tests" --no-colors >"$BUILD.golden.log" 2>&1 ||
-    die "the reference fails its own graders: see $BUILD.golden.log"
-grep '^\[raylab\] wrote' "$BUILD.golden.log" | sed 's/^\[raylab\] /    /'
+    "$BUILD/tests/grading/raylab-grading-tests" --no-colors >"$BUILD/release-golden.log" 2>&1 ||
+    die "the reference fails its own graders: see $BUILD/release-golden.log"
+grep '^\[raylab\] wrote' "$BUILD/release-golden.log" | sed 's/^\[raylab\] /    /'
 if ! diff -rq "$RAYLAB_ROOT/tests/data/golden" "$OUT/tests/data/golden" >/dev/null; then
     warn "tests/data/golden/ in this tree differs from what the reference writes now;" \
         "refresh it: ninja -C <build> raylab-update-golden"
