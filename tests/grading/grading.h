@@ -61,12 +61,19 @@ const char* impl_name();
 bool using_golden();
 /// The golden data folder (RAYLAB_GOLDEN_DIR, else tests/data/golden/ of the sources).
 std::string golden_dir();
+/// Where this run records the reference's answers as golden data (RAYLAB_GOLDEN_WRITE),
+/// or "".
+std::string golden_record_dir();
+/// Where save_image() writes (RAYLAB_GRADE_IMAGES), or "".
+std::string images_dir();
 
 /// Reads the environment and prints one line saying what is graded against what.
 /// Returns false (after printing why) when the request cannot be met.
 bool setup();
 /// Writes the golden data recorded in this run (RAYLAB_GOLDEN_WRITE=DIR), if any.
 bool finish();
+/// The part of finish() that writes golden data (golden.cpp).
+bool write_golden();
 
 /// Calls of the implementation under test. A stub fails the current test case with
 /// "not started: ..."; fault injection (RAYLAB_GRADE_FAULT, for the grader's own tests of
@@ -170,6 +177,9 @@ std::string save_image(const std::string& name, const Image& image);
 
 // ---------------------------------------------------------------------------------------
 // Printing, for INFO and failure messages
+
+/// The shortest decimal form (6 to 9 digits) that reads back as the same float.
+std::string format_float(float x);
 
 std::string show(double x);
 std::string show(const Vec2& v);

@@ -1,0 +1,72 @@
+// raylab-grade's parts (grade_main.cpp): results of a grading run, running the graders,
+// and the reports.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "raylab/modules.h"
+
+namespace raylab::grade {
+
+/// What the driver was asked to do (the command line).
+struct Options {
+    std::string tests, out, label, expect;
+    bool reference = false;
+    double timeout = 10.0;
+    double points = 10.0;
+    std::map<std::string, std::string> module_errors;  // ID -> file with the message
+};
+
+/// The outcome of one test case.
+struct CaseResult {
+    std::string name;
+    std::string status = "not run";  // pass, fail, stub, crash, not run
+    std::string message;
+};
+
+/// The outcome of one module: its cases, status, score and first failure.
+struct ModuleResult {
+    const ModuleInfo* info = nullptr;
+    std::vector<CaseResult> cases;
+    std::string status;  // passed, failed, not started, crashed (SIG...), time limit, ...
+    std::string first_failure;
+    std::string build_error;
+    int passed = 0;
+    double score = 0.0, max_score = 0.0;
+    double seconds = 0.0;
+};
+
+/// Prints "raylab-grade: message" and exits with status 2.
+[[noreturn]] void die(const std::string& message);
+std::string read_file(const std::string& path);
+/// Writes text to path; dies on failure.
+void write_file(const std::string& path, const std::string& text);
+/// mkdir -p
+void make_dirs(const std::string& path);
+std::vector<std::string> split(const std::string& s, char sep);
+std::string first_line(const std::string& s);
+std::string shorten(const std::string& s, size_t n);
+/// Two decimals.
+std::string fixed(double x);
+
+// grade_run.cpp
+/// The test case names of each suite (raylab-grading-tests --list-test-cases).
+std::map<std::string, std::vector<std::string>> list_cases(const Options& o);
+/// Runs one module's suite in its own process with the time limit and scores it.
+ModuleResult grade_module(const Options& o, const ModuleInfo& info,
+                          const std::vector<std::string>& names);
+
+// grade_report.cpp
+/// The score table.
+std::string table(const std::vector<ModuleResult>& modules, const std::string& label);
+/// What a student reads about one module: status and every failure with its message.
+std::string module_output(const ModuleResult& m, size_t max_cases = 12);
+/// JUnit XML: one testsuite per module, one testcase per test case.
+std::string junit(const std::vector<ModuleResult>& modules);
+/// Gradescope's results.json: score, output, and one test per module.
+std::string results_json(const std::vector<ModuleResult>& modules,
+                         const std::string& summary);
+
+}  // namespace raylab::grade

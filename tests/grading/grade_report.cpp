@@ -1,0 +1,240 @@
+// raylab-grade: the score table, the per-module texts, JUnit XML and results.json, and
+// the small helpers the driver's parts share.
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "grade.h"
+
+namespace raylab::grade {
+
+// ---- Helpers
+// -------------------------------------------------------------------------------
+
+[[noreturn]] void die(const std::string& message) {
+    std::cerr << "raylab-grade: " << message << "\n";
+    std::exit(2);
+}
+
+std::string read_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+    std::vector<std::string> out;
+    std::string item;
+    std::istringstream in(s);
+    while (std::getline(in, item, sep))
+        out.push_back(item);
+    return out;
+}
+
+std::string first_line(const std::string& s) {
+    return s.substr(0, s.find('\n'));
+}
+
+std::string shorten(const std::string& s, size_t n) {
+    return s.size() <= n ? s : s.substr(0, n - 3) + "...";
+}
+
+// mkdir -p
+void make_dirs(const std::string& path) {
+    size_t at = 0;
+    do {
+        at = path.find('/', at + 1);
+        const std::string prefix = path.substr(0, at);
+        if (mkdir(prefix.c_str(), 0755) != 0 && errno != EEXIST)
+            die("cannot create " + prefix + ": " + std::strerror(errno));
+    } while (at != std::string::npos);
+}
+
+void write_file(const std::string& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+    if (!out) die("cannot write " + path);
+}
+// ---- Reports --------------------------------------------------------------------------
+
+std::string fixed(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.2f", x);
+    return buf;
+}
+
+std::string pad(const std::string& s, size_t n) {
+    return s.size() >= n ? s : s + std::string(n - s.size(), ' ');
+}
+
+std::string table(const std::vector<ModuleResult>& modules, const std::string& label) {
+    std::ostringstream s;
+    s << "raylab grade: " << label << "\n\n"
+      << pad("module", 16) << pad("tests", 8) << pad("points", 14) << "first failure\n";
+    double total = 0, max_total = 0;
+    int passed = 0, cases = 0;
+    for (const ModuleResult& m : modules) {
+        const std::string tests =
+            std::to_string(m.passed) + "/" + std::to_string(m.cases.size());
+        s << pad(m.info->id, 16) << pad(tests, 8)
+          << pad(fixed(m.score) + " / " + fixed(m.max_score), 14)
+          << (m.status == "passed" ? "-" : shorten(m.first_failure, 110)) << "\n";
+        total += m.score;
+        max_total += m.max_score;
+        passed += m.passed;
+        cases += int(m.cases.size());
+    }
+    s << pad("total", 16) << pad(std::to_string(passed) + "/" + std::to_string(cases), 8)
+      << fixed(total) << " / " << fixed(max_total) << "\n";
+    return s.str();
+}
+
+// The text a student reads for one module: status, then every failed case with its
+// message
+std::string module_output(const ModuleResult& m, size_t max_cases) {
+    std::ostringstream s;
+    s << m.info->id << " (" << m.info->title << "): " << m.passed << "/" << m.cases.size()
+      << " tests passed, " << fixed(m.score) << " of " << fixed(m.max_score)
+      << " points [" << m.status << "]\n";
+    if (!m.build_error.empty()) {
+        s << "\n" << shorten(m.build_error, 4000) << "\n";
+        return s.str();
+    }
+    if (m.status == "time limit" || m.status.rfind("crashed", 0) == 0)
+        s << m.first_failure << "\n";
+    if (m.status == "not started") {
+        s << "Every test stopped at a function that still calls RAYLAB_STUB.\n";
+        return s.str();
+    }
+    size_t shown = 0;
+    for (const CaseResult& c : m.cases) {
+        if (c.status == "pass" || c.status == "not run") continue;
+        if (shown++ == max_cases) {
+            s << "(more failures in logs/" << m.info->id << ".log)\n";
+            break;
+        }
+        s << "\nFAILED: " << c.name << "\n  " << shorten(c.message, 1500) << "\n";
+    }
+    return s.str();
+}
+
+std::string xml_escape(const std::string& s) {
+    std::string out;
+    for (const char c : s) {
+        switch (c) {
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            default:
+                // Control characters other than tab and newline are not allowed in XML
+                if (static_cast<unsigned char>(c) >= 0x20 || c == '\n' || c == '\t')
+                    out += c;
+        }
+    }
+    return out;
+}
+
+std::string json_escape(const std::string& s) {
+    std::string out;
+    for (const char c : s) {
+        switch (c) {
+            case '"':
+                out += "\\\"";
+                break;
+            case '\\':
+                out += "\\\\";
+                break;
+            case '\n':
+                out += "\\n";
+                break;
+            case '\t':
+                out += "\\t";
+                break;
+            default:
+                if (static_cast<unsigned char>(c) < 0x20) {
+                    char buf[8];
+                    std::snprintf(buf, sizeof buf, "\\u%04x", c);
+                    out += buf;
+                } else {
+                    out += c;
+                }
+        }
+    }
+    return out;
+}
+
+std::string junit(const std::vector<ModuleResult>& modules) {
+    std::ostringstream s;
+    int tests = 0, failures = 0, errors = 0;
+    std::ostringstream suites;
+    for (const ModuleResult& m : modules) {
+        int f = 0, e = 0;
+        std::ostringstream cases;
+        for (const CaseResult& c : m.cases) {
+            cases << "    <testcase classname=\"" << m.info->id << "\" name=\""
+                  << xml_escape(c.name) << "\"";
+            if (c.status == "pass") {
+                cases << "/>\n";
+                continue;
+            }
+            const bool error = c.status == "crash" || c.status == "not run";
+            (error ? e : f)++;
+            const char* tag = error ? "error" : "failure";
+            const std::string message = c.message.empty() ? m.first_failure : c.message;
+            cases << ">\n      <" << tag << " message=\""
+                  << xml_escape(first_line(message)) << "\">" << xml_escape(message)
+                  << "</" << tag << ">\n    </testcase>\n";
+        }
+        suites << "  <testsuite name=\"" << m.info->id << "\" tests=\"" << m.cases.size()
+               << "\" failures=\"" << f << "\" errors=\"" << e << "\" time=\""
+               << m.seconds << "\">\n"
+               << cases.str() << "  </testsuite>\n";
+        tests += int(m.cases.size());
+        failures += f;
+        errors += e;
+    }
+    s << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"raylab-grade\" "
+         "tests=\""
+      << tests << "\" failures=\"" << failures << "\" errors=\"" << errors << "\">\n"
+      << suites.str() << "</testsuites>\n";
+    return s.str();
+}
+
+std::string results_json(const std::vector<ModuleResult>& modules,
+                         const std::string& summary) {
+    double total = 0;
+    for (const ModuleResult& m : modules)
+        total += m.score;
+    std::ostringstream s;
+    s << "{\n  \"score\": " << fixed(total) << ",\n  \"output\": \""
+      << json_escape(summary) << "\",\n  \"tests\": [\n";
+    for (size_t k = 0; k < modules.size(); ++k) {
+        const ModuleResult& m = modules[k];
+        s << "    {\n      \"name\": \"" << m.info->id << ": "
+          << json_escape(m.info->title) << "\",\n      \"score\": " << fixed(m.score)
+          << ",\n      \"max_score\": " << fixed(m.max_score) << ",\n      \"status\": \""
+          << (m.status == "passed" ? "passed" : "failed") << "\",\n      \"output\": \""
+          << json_escape(module_output(m)) << "\"\n    }"
+          << (k + 1 < modules.size() ? "," : "") << "\n";
+    }
+    s << "  ]\n}\n";
+    return s.str();
+}
+
+}  // namespace raylab::grade
