@@ -162,4 +162,35 @@ Vec3 Rng::direction_near(const Vec3& axis, float min_cos, float max_cos) {
     }
 }
 
+Ray random_ray_through(Rng& rng, const Vec3& p, const Vec3& w, float t) {
+    Ray r{p - t * w, w, 0.0f, kInfinity};
+    switch (rng.integer(0, 4)) {
+        case 1:  // ends before p
+            r.tmax = 0.9f * t;
+            break;
+        case 2:  // starts after p
+            r.tmin = 1.1f * t;
+            break;
+        case 3:  // a window around p
+            r.tmin = 0.5f * t;
+            r.tmax = 1.5f * t;
+            break;
+        case 4:  // pointing away from p
+            r.w = -w;
+            break;
+        default:
+            break;
+    }
+    return r;
+}
+
+Hit make_hit(float t, const Vec3& position, const Vec3& n, const Vec2& uv) {
+    Hit h;
+    h.t = t;
+    h.position = position;
+    h.n = n;
+    h.uv = uv;
+    return h;
+}
+
 }  // namespace raylab::grading

@@ -39,6 +39,11 @@ inline constexpr double kPatternImage = 1e-4;
 inline constexpr double kDirection = 1e-5;
 /// Camera constant d (relative).
 inline constexpr double kCameraConstant = 1e-5;
+/// Angles between rays, in degrees (absolute).
+inline constexpr double kAngleDegrees = 1e-3;
+/// The (u, v) where a returned eye ray crosses the image plane (absolute): the
+/// direction's rounding error magnified by up to 1 / d.
+inline constexpr double kImagePlaneFromRay = 1e-4;
 /// Distances t and hit positions, relative to the size of the problem: the largest of
 /// 1, |o|, t and the primitive's coordinates.
 inline constexpr double kDistance = 1e-4;
@@ -257,5 +262,13 @@ class Rng {
   private:
     std::uint64_t state_;
 };
+
+/// A ray that meets point p at distance t along the unit direction w, with one of five
+/// intervals drawn from rng: the whole ray; ending 10% before p; starting 10% after p; a
+/// window from t/2 to 3t/2; or the ray turned around, pointing away from p.
+Ray random_ray_through(Rng& rng, const Vec3& p, const Vec3& w, float t);
+
+/// A hit record with the fields a primitive fills.
+Hit make_hit(float t, const Vec3& position, const Vec3& n, const Vec2& uv = Vec2(0.0f));
 
 }  // namespace raylab::grading

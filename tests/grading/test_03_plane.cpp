@@ -11,14 +11,6 @@ namespace {
 
 const Plane kFloor{Vec3(0, 1, 0), 0.0f};  // y = 0
 
-Hit make_hit(float t, const Vec3& position, const Vec3& n) {
-    Hit h;
-    h.t = t;
-    h.position = position;
-    h.n = n;
-    return h;
-}
-
 // Checks one ray against one plane, printing both
 bool check(const Ray& r, const Plane& plane, const std::optional<Hit>& want) {
     INFO(show(r) << "; " << show(plane));
@@ -114,23 +106,7 @@ TEST_SUITE("03_plane") {
             Vec3 w = rng.direction_near(n, 0.15f, 1.0f);
             if (rng.integer(0, 1)) w = -w;
             const float t = rng.uniform(0.2f, 10.0f);
-            Ray r{p - t * w, w, 0.0f, kInfinity};
-            switch (rng.integer(0, 4)) {
-                case 1:
-                    r.tmax = 0.9f * t;
-                    break;  // ends before the plane
-                case 2:
-                    r.tmin = 1.1f * t;
-                    break;  // starts after it
-                case 3:
-                    r.tmin = 0.5f * t, r.tmax = 1.5f * t;
-                    break;
-                case 4:
-                    r.w = -w;
-                    break;  // points away from it
-                default:
-                    break;
-            }
+            const Ray r = random_ray_through(rng, p, w, t);
             INFO("seed " << seed << ": " << show(r) << "; " << show(plane));
             const auto want = expected<std::optional<Hit>>(
                 "03_plane/random rays/" + std::to_string(seed),

@@ -13,14 +13,6 @@ namespace {
 const Sphere kUnit{Vec3(0.0f), 1.0f};
 const Vec3 kDown(0, 0, -1);  // along -z
 
-Hit make_hit(float t, const Vec3& position, const Vec3& n) {
-    Hit h;
-    h.t = t;
-    h.position = position;
-    h.n = n;
-    return h;
-}
-
 bool check(const Ray& r, const Sphere& s, const std::optional<Hit>& want) {
     INFO(show(r) << "; " << show(s));
     const std::optional<Hit> got = under_test::intersect_sphere(r, s);

@@ -16,15 +16,6 @@ namespace {
 const Vec3 kV0(0, 0, 0), kV1(1, 0, 0), kV2(0, 1, 0);
 const Vec3 kDown(0, 0, -1);
 
-Hit make_hit(float t, const Vec3& position, const Vec3& n, const Vec2& uv) {
-    Hit h;
-    h.t = t;
-    h.position = position;
-    h.n = n;
-    h.uv = uv;
-    return h;
-}
-
 bool check(const Ray& r, const Vec3& v0, const Vec3& v1, const Vec3& v2,
            const std::optional<Hit>& want) {
     INFO(show(r) << "; " << show_triangle(v0, v1, v2));
@@ -165,23 +156,7 @@ TEST_SUITE("05_triangle") {
             Vec3 w = rng.direction_near(glm::normalize(N), 0.2f, 1.0f);
             if (rng.integer(0, 1)) w = -w;
             const float t = rng.uniform(0.2f, 10.0f);
-            Ray r{p - t * w, w, 0.0f, kInfinity};
-            switch (rng.integer(0, 4)) {
-                case 1:
-                    r.tmax = 0.9f * t;
-                    break;
-                case 2:
-                    r.tmin = 1.1f * t;
-                    break;
-                case 3:
-                    r.tmin = 0.5f * t, r.tmax = 1.5f * t;
-                    break;
-                case 4:
-                    r.w = -w;
-                    break;
-                default:
-                    break;
-            }
+            const Ray r = random_ray_through(rng, p, w, t);
             INFO("seed " << seed << ": " << show(r) << "; " << show_triangle(v0, v1, v2));
             const auto want = expected<std::optional<Hit>>(
                 "05_triangle/random rays/" + std::to_string(seed), inputs(r, v0, v1, v2),

@@ -250,6 +250,8 @@ TEST_SUITE("08_shadows") {
             INFO(show(r) << " for x = " << show(x) << " and the light at "
                          << show(light));
             const Vec3 w = glm::normalize(r.w);
+            // Along +-wi to 1e-4 in cosine; starting within 0.02, the largest offset a
+            // reasonable epsilon gives here
             RAYLAB_CHECK(std::abs(std::abs(glm::dot(w, s.wi)) - 1.0f) < 1e-4f,
                          "the direction is not along wi = " << show(s.wi));
             RAYLAB_CHECK(glm::length(r.o - x) < 0.02f || glm::length(r.o - light) < 0.02f,
