@@ -40,14 +40,18 @@ std::vector<SphereCase> sphere_cases(Rng& rng, double D, int n, bool grazing) {
         const DVec3 o = origin(rng);
         const Sphere s{Vec3(D * rng.unit_vector()), static_cast<float>(kSize)};
         const DVec3 c(s.c);
-        // Impact parameter: distance of the aim point from the centre, across the view
-        double impact = 1.15 * kSize * std::sqrt(rng.uniform());
+        // Impact parameter d: the distance of the ray from the centre
+        double d = 1.15 * kSize * std::sqrt(rng.uniform());
         if (grazing) {
             const double eps = std::pow(10.0, -rng.uniform(1.0, 6.0));
-            impact = kSize * (rng.uniform() < 0.5 ? 1.0 - eps : 1.0 + eps);
+            d = kSize * (rng.uniform() < 0.5 ? 1.0 - eps : 1.0 + eps);
         }
+        // Aim across the view at offset b = d L / sqrt(L^2 - d^2), so that the ray passes
+        // the centre at distance d (L: distance from the origin to the centre)
+        const double L = glm::length(c - o);
+        const double offset = d * L / std::sqrt(L * L - d * d);
         const DVec3 across = random_perpendicular(rng, glm::normalize(c - o));
-        cases.push_back({ray_towards(o, c + impact * across), s});
+        cases.push_back({ray_towards(o, c + offset * across), s});
     }
     return cases;
 }

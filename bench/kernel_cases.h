@@ -31,9 +31,10 @@ struct SharedEdgeCase {
     Vec3 a, b, c1, c2;
 };
 
-/// Random rays at spheres of radius 1/4 centred at distance D: the aim point lies within
-/// 1.15 r of the centre, so about 3/4 of them hit. grazing: the aim point lies at
-/// r (1 +- s) from the centre, s = 10^-U(1, 6): half hit, all near the silhouette.
+/// Random rays at spheres of radius r = 1/4 centred at distance D: each ray passes the
+/// centre at a distance uniform over the disc of radius 1.15 r, so about 3/4 of them hit.
+/// grazing: the ray passes at r (1 +- s), s = 10^-U(1, 6): half hit, all near the
+/// silhouette. (D must exceed 1.15 r + the origins' spread, 0.5 at most.)
 std::vector<SphereCase> sphere_cases(Rng& rng, double D, int n, bool grazing);
 
 /// Random rays at random triangles at distance D: the aim point is uniform in the

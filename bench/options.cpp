@@ -31,9 +31,9 @@ std::vector<double> parse_distances(const std::string& value) {
         const std::string word = value.substr(start, comma - start);
         char* end = nullptr;
         const double d = std::strtod(word.c_str(), &end);
-        if (word.empty() || *end != '\0' || !(d > 0.0 && d <= 1e12))
+        if (word.empty() || *end != '\0' || !(d >= 1.0 && d <= 1e12))
             throw Error(
-                "--distances expects numbers in (0, 1e12] such as 1,1e2,1e4, got '" +
+                "--distances expects numbers in [1, 1e12] such as 1,1e2,1e4, got '" +
                 word + "'");
         out.push_back(d);
         start = comma + 1;
@@ -73,7 +73,8 @@ std::string bench_help() {
            "  --repeats N       timed repeats per measurement, median reported (5; quick "
            "3)\n"
            "  --rays N          rays per kernel ray set (131072; quick 16384)\n"
-           "  --distances LIST  target distances from the origin (1,1e2,1e4,1e5,1e6)\n"
+           "  --distances LIST  target distances from the origin, each >= 1\n"
+           "                    (1,1e2,1e4,1e5,1e6)\n"
            "  --mesh-tris N     triangles of the procedural mesh (400000; quick 100000)\n"
            "  --size WxH        camera rays and renders (640x480)\n"
            "  --threads N       what 'all threads' means in the render section\n"
