@@ -14,13 +14,11 @@ namespace raylab::viewer {
 namespace {
 
 std::string number(float x) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.9g", static_cast<double>(x));
-    return buffer;
+    return format_number(x);
 }
 
 std::string triple(const Vec3& v) {
-    return number(v.x) + "," + number(v.y) + "," + number(v.z);
+    return format_vec3(v, ",");
 }
 
 // Quotes a word for a POSIX shell when it holds anything but safe characters

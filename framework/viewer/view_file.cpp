@@ -12,16 +12,24 @@
 
 namespace raylab::viewer {
 
-namespace {
-
-std::string number(float x) {
+std::string format_number(float x) {
     char buffer[32];
     std::snprintf(buffer, sizeof buffer, "%.9g", static_cast<double>(x));
     return buffer;
 }
 
+std::string format_vec3(const Vec3& v, const char* sep) {
+    return format_number(v.x) + sep + format_number(v.y) + sep + format_number(v.z);
+}
+
+namespace {
+
+std::string number(float x) {
+    return format_number(x);
+}
+
 std::string triple(const Vec3& v) {
-    return number(v.x) + " " + number(v.y) + " " + number(v.z);
+    return format_vec3(v, " ");
 }
 
 // Reads one line's numbers after the keyword; exactly count of them, all finite

@@ -25,6 +25,12 @@ struct ViewFile {
 };
 
 /// The text of a view file; floats are written with 9 digits, so they read back exactly.
+/// A float with 9 significant digits: reads back to the same float.
+std::string format_number(float x);
+
+/// x, y, z with 9 significant digits each, separated by sep.
+std::string format_vec3(const Vec3& v, const char* sep);
+
 std::string format_view_file(const View& view, const std::vector<PointLight>& lights);
 
 /// Parses the text of a view file. Throws raylab::Error as "SOURCE:LINE: problem" (or
