@@ -25,7 +25,8 @@ std::optional<Hit> intersect_triangle(const Ray& r, const Vec3& v0, const Vec3& 
     // TODO(student) 05_triangle: The weights sum to det = e0 + e1 + e2: a miss when it is
     //   zero (parallel ray or degenerate triangle)
     // TODO(student) 05_triangle: Distance along w to the triangle's plane,
-    //   N = (b - a) x (c - a), t = (N . a) / det, and conditional acceptance
+    //   N = (b - a) x (c - a), t = (N . a) / (N . w) (a miss when N . w is zero), and
+    //   conditional acceptance
     //   (tmin <= t <= tmax)
     // TODO(student) 05_triangle: The hit: t, position o + t w, n = normalize(N),
     //   uv = (e1 / det, e2 / det)

@@ -29,9 +29,13 @@ std::optional<Hit> intersect_triangle(const Ray& r, const Vec3& v0, const Vec3& 
     // triangles
     const double det = e0 + e1 + e2;
     if (det == 0.0) return std::nullopt;
-    // Distance along w to the triangle's plane, and conditional acceptance
+    // Distance along w to the triangle's plane: t = N . (v0 - o) / N . w. The denominator
+    // is computed from N directly, not as det: the sum of three edge functions carries an
+    // error that grows with the square of the distance from the origin
     const DVec3 N = glm::cross(b - a, c - a);
-    const float t = static_cast<float>(glm::dot(N, a) / det);
+    const double Nw = glm::dot(N, w);
+    if (Nw == 0.0) return std::nullopt;
+    const float t = static_cast<float>(glm::dot(N, a) / Nw);
     if (!(t >= r.tmin && t <= r.tmax)) return std::nullopt;
     Hit hit;
     hit.t = t;

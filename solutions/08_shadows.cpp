@@ -18,8 +18,9 @@ bool in_shadow(const Occluder& scene, const Vec3& x, const Vec3& n,
     const float eps = 1e-4f + 8.0f * std::numeric_limits<float>::epsilon() * scale;
     const Vec3 side = glm::dot(n, sample.wi) >= 0.0f ? n : -n;
     const Vec3 o = x + eps * side;
-    // Segment to the light, stopping short of it
-    const Ray shadow_ray{o, sample.wi, 0.0f,
+    // Segment to the light, stopping short of it. tmin = eps too: at an inside corner the
+    // offset origin lies in the neighbouring face's plane, which would block at t = 0
+    const Ray shadow_ray{o, sample.wi, eps,
                          glm::length(sample.wi * sample.r + x - o) - eps};
     return scene.occluded(shadow_ray);
 }
