@@ -14,9 +14,8 @@ namespace raylab::student {
 Vec2 image_plane_point(int i, int j, int W, int H) {
     // TODO(student) 01_pixel_loop: Pixel centre in [0, 1]^2, measured from the top-left
     //   corner: s = (i + 1/2) / W, q = (j + 1/2) / H (in float: beware integer division)
-    // TODO(student) 01_pixel_loop: Image-plane units: the visible height is 1, the width
-    // is
-    //   the aspect ratio aspect = W / H; return ((s - 1/2) * aspect, 1/2 - q)
+    // TODO(student) 01_pixel_loop: Image-plane units: the visible height is 1, the
+    //   width is the aspect ratio aspect = W / H; return ((s - 1/2) * aspect, 1/2 - q)
     RAYLAB_STUB("01_pixel_loop");
     (void)i, (void)j, (void)W, (void)H;
     return Vec2(0.0f);

@@ -17,9 +17,8 @@ std::optional<Hit> intersect_sphere(const Ray& r, const Sphere& sphere) {
     //   b = f . w, c = f . f - r^2
     // TODO(student) 04_sphere: Discriminant disc = b^2 - c; a miss when it is negative
     // TODO(student) 04_sphere: Both roots t0 = -b - sqrt(disc) <= t1 = -b + sqrt(disc)
-    // TODO(student) 04_sphere: Nearest root inside [tmin, tmax]: t = t0 if it is
-    // accepted,
-    //   else t1 if it is (the ray starts inside), else a miss
+    // TODO(student) 04_sphere: Nearest root inside [tmin, tmax]:
+    //   t = t0 if accepted, else t1 if accepted (the ray starts inside), else a miss
     // TODO(student) 04_sphere: The hit: hit.t = t, hit.position = o + t w,
     //   hit.n = (hit.position - c) / r
     RAYLAB_STUB("04_sphere");
