@@ -72,14 +72,13 @@ Modules (names: pixel-loop camera plane sphere triangle point-light lambert shad
 IDs such as 04_sphere, numbers 1-8, or all):
   --student LIST        run the student's exercises/ code for these modules
   --reference LIST      run the reference solutions/ for these modules
-                        (default: the student's code where started, else the reference)
+                        (default: the student's code where started, else the reference;
+                        the lists change that default in the order given)
 )";
 }
 
 Options parse_options(int argc, const char* const* argv, bool allow_extra) {
     Options o;
-    bool auto_modules = true;
-    ModuleSelection explicit_selection = ModuleSelection::all(Impl::student);
     std::vector<std::pair<std::string, Impl>> module_lists;
     for (int k = 1; k < argc; ++k) {
         const std::string flag = argv[k];
@@ -133,7 +132,6 @@ Options parse_options(int argc, const char* const* argv, bool allow_extra) {
         } else if (flag == "--student" || flag == "--reference") {
             module_lists.emplace_back(
                 value(), flag == "--student" ? Impl::student : Impl::reference);
-            auto_modules = false;
         } else if (allow_extra && flag.rfind("--", 0) == 0) {
             o.extra.push_back(flag);
             // A following word that is not a flag is this flag's value
@@ -145,11 +143,13 @@ Options parse_options(int argc, const char* const* argv, bool allow_extra) {
     }
     validate(o.settings);
     if (o.help) return o;
-    // Later lists override earlier ones: "--student all --reference camera"
+    // The lists apply in order on top of the automatic choice, so "--student sphere" runs
+    // the student's sphere and leaves the other modules as they were; "--student all
+    // --reference camera" runs everything but the camera from exercises/
+    o.modules = auto_selection();
     for (const auto& [list, impl] : module_lists)
-        apply_module_list(explicit_selection, list, impl);
-    o.modules = auto_modules ? auto_selection() : explicit_selection;
-    o.modules_given = !auto_modules;
+        apply_module_list(o.modules, list, impl);
+    o.modules_given = !module_lists.empty();
     return o;
 }
 
