@@ -121,6 +121,18 @@ TEST_SUITE("options") {
                              doctest::Contains("parallel"), Error);
     }
 
+    TEST_CASE("module flags change the automatic choice only for the modules they name") {
+        const ModuleSelection automatic = auto_selection();
+        const Options o = parse({"--student", "sphere"});
+        for (const ModuleInfo& info : module_infos()) {
+            INFO(info.id);
+            const Impl expected =
+                info.module == Module::sphere ? Impl::student : automatic[info.module];
+            CHECK(o.modules[info.module] == expected);
+        }
+        CHECK(o.modules_given);
+    }
+
     TEST_CASE(
         "without module flags, started modules run the student's code, stubs the "
         "reference") {
