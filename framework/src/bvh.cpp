@@ -36,11 +36,11 @@ struct Builder {
         nodes[index].box = box;
         const auto make_leaf = [&] {
             nodes[index].first_or_second = first;
-            nodes[index].count = static_cast<std::uint16_t>(count);
+            nodes[index].count = count;
         };
         if (count <= 1) return make_leaf();
         // Deep trees (pathological input): halve by index so the depth stays bounded
-        if (depth >= kMaxSahDepth) return split(index, first, count, count / 2, 0, depth);
+        if (depth >= kMaxSahDepth) return split(index, first, count, count / 2, depth);
 
         // Best split over kBins bins along every axis with a non-zero centre extent
         float best_cost = kInfinity;
@@ -88,7 +88,7 @@ struct Builder {
         if (best_axis < 0 || (count <= kMaxLeaf && leaf_cost <= split_cost)) {
             if (best_axis >= 0 || count <= kMaxLeaf) return make_leaf();
             // All centres coincide: split by index so leaves stay small
-            return split(index, first, count, count / 2, 0, depth);
+            return split(index, first, count, count / 2, depth);
         }
 
         // Partition by bin
@@ -99,13 +99,12 @@ struct Builder {
                 return bin_of(centres[p][best_axis], lo, extent) <= best_bin;
             });
         split(index, first, count,
-              static_cast<std::uint32_t>(mid - (prims.data() + first)), best_axis, depth);
+              static_cast<std::uint32_t>(mid - (prims.data() + first)), depth);
     }
 
     void split(std::uint32_t index, std::uint32_t first, std::uint32_t count,
-               std::uint32_t left_count, int axis, int depth) {
+               std::uint32_t left_count, int depth) {
         nodes[index].count = 0;
-        nodes[index].axis = static_cast<std::uint16_t>(axis);
         const std::uint32_t left = static_cast<std::uint32_t>(nodes.size());
         nodes.emplace_back();
         build(left, first, left_count, depth + 1);

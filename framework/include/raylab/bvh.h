@@ -72,8 +72,7 @@ class Bvh {
         Aabb box;
         std::uint32_t first_or_second =
             0;                    ///< leaf: first primitive; interior: right child
-        std::uint16_t count = 0;  ///< primitives in a leaf, 0 for interior nodes
-        std::uint16_t axis = 0;   ///< interior: the split axis
+        std::uint32_t count = 0;  ///< primitives in a leaf, 0 for interior nodes
     };
 
     /// Builds the tree over one box per primitive (binned SAH, 16 bins).
