@@ -13,6 +13,8 @@ namespace raylab::grade {
 /// What the driver was asked to do (the command line).
 struct Options {
     std::string tests, out, label, expect;
+    std::string workers;      // folder with one worker per module ID (scripts/grade.sh)
+    std::string private_dir;  // the instructor's private cases (hidden tests)
     bool reference = false;
     double timeout = 10.0;
     double points = 10.0;
@@ -33,6 +35,7 @@ struct ModuleResult {
     std::string status;  // passed, failed, not started, crashed (SIG...), time limit, ...
     std::string first_failure;
     std::string build_error;
+    std::string sandbox;  // how the worker was protected
     int passed = 0;
     double score = 0.0, max_score = 0.0;
     double seconds = 0.0;

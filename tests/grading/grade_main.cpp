@@ -28,6 +28,9 @@ constexpr const char* kUsage = R"(Usage: raylab-grade --tests FILE --out DIR [op
   --timeout SECONDS     time limit per module (default 10)
   --points N            points per module (default 10)
   --module-error ID=FILE  module ID failed to build: score 0, FILE holds the message
+  --workers DIR         DIR/NN_name is the worker (student code) graded for module NN_name
+                        (default: the worker of this build's exercises/)
+  --private DIR         the instructor's private cases (hidden tests), kept out of releases
   --label TEXT          what is graded, for the reports (default: the implementation)
   --expect MODE         exit 1 unless: full (every module full marks), not-started (every
                         module a stub), faults (modules in RAYLAB_GRADE_FAULT score 0 by
@@ -100,6 +103,10 @@ Options parse(int argc, char** argv) {
             o.timeout = std::atof(value().c_str());
         } else if (a == "--points") {
             o.points = std::atof(value().c_str());
+        } else if (a == "--workers") {
+            o.workers = value();
+        } else if (a == "--private") {
+            o.private_dir = value();
         } else if (a == "--label") {
             o.label = value();
         } else if (a == "--expect") {
