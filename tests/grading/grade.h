@@ -19,6 +19,7 @@ struct Options {
     double timeout = 10.0;
     double points = 10.0;
     std::map<std::string, std::string> module_errors;  // ID -> file with the message
+    std::map<std::string, std::string> sources;        // ID -> the hand-in's file graded
 };
 
 /// The outcome of one test case.
@@ -36,6 +37,7 @@ struct ModuleResult {
     std::string first_failure;
     std::string build_error;
     std::string sandbox;  // how the worker was protected
+    std::string source;   // the hand-in's file that was graded
     int passed = 0;
     double score = 0.0, max_score = 0.0;
     double seconds = 0.0;

@@ -28,6 +28,7 @@ constexpr const char* kUsage = R"(Usage: raylab-grade --tests FILE --out DIR [op
   --timeout SECONDS     time limit per module (default 10)
   --points N            points per module (default 10)
   --module-error ID=FILE  module ID failed to build: score 0, FILE holds the message
+  --source ID=FILE      the hand-in's file graded for module ID (for the reports)
   --workers DIR         DIR/NN_name is the worker (student code) graded for module NN_name
                         (default: the worker of this build's exercises/)
   --private DIR         the instructor's private cases (hidden tests), kept out of releases
@@ -103,6 +104,11 @@ Options parse(int argc, char** argv) {
             o.timeout = std::atof(value().c_str());
         } else if (a == "--points") {
             o.points = std::atof(value().c_str());
+        } else if (a == "--source") {
+            const std::string v = value();
+            const size_t eq = v.find('=');
+            if (eq == std::string::npos) die("--source needs ID=FILE");
+            o.sources[v.substr(0, eq)] = v.substr(eq + 1);
         } else if (a == "--workers") {
             o.workers = value();
         } else if (a == "--private") {

@@ -103,6 +103,8 @@ std::string module_output(const ModuleResult& m, size_t max_cases) {
     s << m.info->id << " (" << m.info->title << "): " << m.passed << "/" << m.cases.size()
       << " tests passed, " << fixed(m.score) << " of " << fixed(m.max_score)
       << " points [" << m.status << "]\n";
+    if (!m.source.empty()) s << "graded file: " << m.source << "\n";
+    if (!m.sandbox.empty()) s << "student code ran in: " << m.sandbox << "\n";
     if (!m.build_error.empty()) {
         s << "\n" << shorten(m.build_error, 4000) << "\n";
         return s.str();

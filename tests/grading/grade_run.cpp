@@ -152,6 +152,8 @@ ModuleResult grade_module(const Options& o, const ModuleInfo& info,
     ModuleResult m;
     m.info = &info;
     m.max_score = o.points;
+    if (const auto src = o.sources.find(info.id); src != o.sources.end())
+        m.source = src->second;
     for (const std::string& name : names)
         m.cases.push_back({name, "not run", ""});
     const auto find = [&](const std::string& name) -> CaseResult* {
