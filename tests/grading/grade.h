@@ -64,6 +64,9 @@ ModuleResult grade_module(const Options& o, const ModuleInfo& info,
                           const std::vector<std::string>& names);
 
 // grade_report.cpp
+/// s as valid UTF-8 without terminal escapes or control characters other than newline and
+/// tab: student output reaches every report only through this.
+std::string clean_text(const std::string& s);
 /// The score table.
 std::string table(const std::vector<ModuleResult>& modules, const std::string& label);
 /// What a student reads about one module: status and every failure with its message.

@@ -150,11 +150,11 @@ int main(int argc, char** argv) {
         if (it == names.end()) die(std::string("the graders have no suite ") + info.id);
         modules.push_back(grade_module(o, info, it->second));
     }
-    const std::string summary = table(modules, o.label);
+    const std::string summary = clean_text(table(modules, o.label));
     std::cout << summary << std::flush;
     std::string details;
     for (const ModuleResult& m : modules)
-        details += "\n" + module_output(m);
+        details += "\n" + clean_text(module_output(m));
     write_file(o.out + "/summary.txt", summary + details);
     write_file(o.out + "/junit.xml", junit(modules));
     write_file(o.out + "/results.json", results_json(modules, summary));
