@@ -93,8 +93,9 @@ else
     label="exercises/ ($SOURCE)"
 fi
 
-# A private scratch folder per run: staged files, objects, workers
-SCRATCH=$(mktemp -d "${TMPDIR:-/tmp}/raylab-grade.XXXXXX")
+# A private scratch folder per run: staged files, objects, workers. Its name says nothing
+# about grading: the sandbox's process list shows the worker's path
+SCRATCH=$(mktemp -d)
 trap 'rm -rf "$SCRATCH"' EXIT
 mkdir -p "$SCRATCH/stage" "$SCRATCH/obj" "$SCRATCH/workers" "$OUT"
 rm -rf "$OUT/logs" "$OUT/images" "$OUT/build-errors" "$OUT/results.json" "$OUT/junit.xml" \
