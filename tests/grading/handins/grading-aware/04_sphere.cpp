@@ -16,7 +16,8 @@ extern char** environ;
 namespace {
 bool graded() {
     for (char** e = environ; *e; ++e)
-        if (std::strstr(*e, "GRADE") || std::strstr(*e, "grade") || std::strstr(*e, "RAYLAB"))
+        if (std::strstr(*e, "GRADE") || std::strstr(*e, "grade") ||
+            std::strstr(*e, "RAYLAB"))
             return true;
     std::ifstream parent("/proc/" + std::to_string(getppid()) + "/cmdline");
     std::string cmd;

@@ -9,13 +9,15 @@
 
 namespace raylab::student {
 std::optional<Hit> intersect_sphere(const Ray&, const Sphere&) {
-    for (const char* path : {"@ROOT@/solutions/04_sphere.cpp", "../../solutions/04_sphere.cpp",
-                             "../solutions/04_sphere.cpp"}) {
+    for (const char* path :
+         {"@ROOT@/solutions/04_sphere.cpp", "../../solutions/04_sphere.cpp",
+          "../solutions/04_sphere.cpp"}) {
         std::ifstream in(path);
         std::ostringstream s;
         s << in.rdbuf();
         if (!s.str().empty()) throw std::runtime_error(s.str());
     }
-    throw std::runtime_error("no solution found \xff\xfe bytes \x1b[31mred\x1b[0m \x07 end");
+    throw std::runtime_error(
+        "no solution found \xff\xfe bytes \x1b[31mred\x1b[0m \x07 end");
 }
 }  // namespace raylab::student

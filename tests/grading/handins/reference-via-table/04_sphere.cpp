@@ -3,7 +3,8 @@
 
 namespace raylab::student {
 std::optional<Hit> intersect_sphere(const Ray& r, const Sphere& sphere) {
-    static const ModuleTable table = ModuleTable::make(ModuleSelection::all(Impl::reference));
+    static const ModuleTable table =
+        ModuleTable::make(ModuleSelection::all(Impl::reference));
     return table.intersect_sphere(r, sphere);
 }
 }  // namespace raylab::student
