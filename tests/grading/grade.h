@@ -10,6 +10,9 @@
 
 namespace raylab::grade {
 
+/// The name prefix of the hidden test cases (graded only with --private).
+inline constexpr const char* kPrivate = "[private]";
+
 /// What the driver was asked to do (the command line).
 struct Options {
     std::string tests, out, label, expect;

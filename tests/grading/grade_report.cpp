@@ -105,6 +105,16 @@ std::string module_output(const ModuleResult& m, size_t max_cases) {
     s << m.info->id << " (" << m.info->title << "): " << m.passed << "/" << m.cases.size()
       << " tests passed, " << fixed(m.score) << " of " << fixed(m.max_score)
       << " points [" << m.status << "]\n";
+    int hidden = 0, hidden_passed = 0;
+    for (const CaseResult& c : m.cases) {
+        if (c.name.rfind(kPrivate, 0) != 0) continue;
+        ++hidden;
+        hidden_passed += c.status == "pass";
+    }
+    if (hidden > 0)
+        s << "public tests: " << m.passed - hidden_passed << "/"
+          << m.cases.size() - hidden << " passed; private tests: " << hidden_passed << "/"
+          << hidden << " passed\n";
     if (!m.source.empty()) s << "graded file: " << m.source << "\n";
     if (!m.sandbox.empty()) s << "student code ran in: " << m.sandbox << "\n";
     if (!m.build_error.empty()) {
@@ -233,6 +243,21 @@ std::string junit(const std::vector<ModuleResult>& modules) {
     return s.str();
 }
 
+// Which part of the module's points came from the public and the private tests
+nlohmann::json part_points(const ModuleResult& m) {
+    int hidden = 0, hidden_passed = 0;
+    for (const CaseResult& c : m.cases) {
+        if (c.name.rfind(kPrivate, 0) != 0) continue;
+        ++hidden;
+        hidden_passed += c.status == "pass";
+    }
+    const double per_case = m.passed > 0 ? m.score / m.passed : 0.0;
+    return {{"public_points", per_case * (m.passed - hidden_passed)},
+            {"private_points", per_case * hidden_passed},
+            {"public_cases", int(m.cases.size()) - hidden},
+            {"private_cases", hidden}};
+}
+
 std::string results_json(const std::vector<ModuleResult>& modules,
                          const std::string& summary) {
     // Gradescope's format: https://gradescope-autograders.readthedocs.io/en/latest/specs/
@@ -248,6 +273,7 @@ std::string results_json(const std::vector<ModuleResult>& modules,
             {"status", m.status == "passed" ? "passed" : "failed"},
             {"visibility", "visible"},
             {"output", clean_text(module_output(m))},
+            {"extra_data", part_points(m)},
         });
     }
     const nlohmann::json results = {

@@ -142,7 +142,10 @@ std::map<std::string, std::vector<std::string>> list_cases(const Options& o) {
     std::string line;
     while (std::getline(in, line)) {
         const std::vector<std::string> f = split(line, '\t');
-        if (f.size() >= 3 && f[0] == "list") cases[f[1]].push_back(f[2]);
+        // The private cases count only when the instructor gives their secret
+        const bool hidden = f.size() >= 3 && f[2].rfind(kPrivate, 0) == 0;
+        if (f.size() >= 3 && f[0] == "list" && (!hidden || !o.private_dir.empty()))
+            cases[f[1]].push_back(f[2]);
     }
     return cases;
 }
@@ -179,8 +182,10 @@ ModuleResult grade_module(const Options& o, const ModuleInfo& info,
     const std::string log = o.out + "/logs/" + id + ".tsv";
     std::remove(log.c_str());
     const RunOutcome r =
-        run({o.tests, "--test-suite=" + id, "--no-colors"}, child_env(o, log, id),
-            o.out + "/logs/" + id + ".log", o.timeout);
+        run({o.tests, "--test-suite=" + id, "--no-colors",
+             o.private_dir.empty() ? "--test-case-exclude=" + std::string(kPrivate) + "*"
+                                   : "--test-case-exclude="},
+            child_env(o, log, id), o.out + "/logs/" + id + ".log", o.timeout);
     m.seconds = r.seconds;
     std::string crashed_in, hung_in, lost_why;
     std::istringstream in(read_file(log));

@@ -4,10 +4,16 @@
 // that is right only for its first calls, or only for the graders' hand-picked inputs,
 // fails here.
 //
+// Hidden tests: the "[private]" cases render from a viewpoint drawn from the instructor's
+// secret seed (scripts/grade.sh --private DIR, DIR/seed); raylab-grade leaves them out
+// unless it is given --private, and reports which part each point came from.
+//
 // A module joins this check with one RAYLAB_WHOLE_RENDER line below (modules the
 // renderer never calls, such as a new sampling module, check their own images in their
 // test file instead).
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <sstream>
 
 #include "grading.h"
@@ -33,23 +39,50 @@ ModuleTable mixed(Module m) {
     return t;
 }
 
-Image render_with(const ModuleTable& table) {
+Image render_with(const ModuleTable& table, const View* view = nullptr) {
     const Scene scene = dtu_scene();
     RenderSettings settings;
     settings.width = kWidth;
     settings.height = kHeight;
     settings.threads = 1;  // one call at a time through the worker
     Image image;
-    render(scene, scene.view, settings, table, image);
+    render(scene, view ? *view : scene.view, settings, table, image);
     return image;
 }
 
-void check_whole_render(Module m) {
+// The instructor's secret seed (RAYLAB_GRADE_PRIVATE=DIR, file DIR/seed), or a fixed one
+// when there is none, so that the private cases are checked against the reference in CI
+std::uint64_t private_seed() {
+    const char* dir = std::getenv("RAYLAB_GRADE_PRIVATE");
+    if (!dir || !*dir) return 20261124;
+    std::ifstream in(std::string(dir) + "/seed");
+    std::uint64_t seed = 0;
+    if (!(in >> seed)) FAIL("cannot read a number from " << dir << "/seed");
+    return seed;
+}
+
+// A viewpoint the student cannot know: around the DTU scene, from the secret seed
+View hidden_view(Module m) {
+    Rng rng(private_seed() * 31 + std::uint64_t(m));
+    View view = dtu_scene().view;
+    Vec3 dir = rng.direction();
+    dir.y = std::abs(dir.y) * 0.6f + 0.15f;
+    view.eye = view.lookat + glm::normalize(dir) * rng.uniform(3.0f, 6.0f);
+    view.fov = rng.uniform(35.0f, 70.0f);
+    return view;
+}
+
+void check_whole_render(Module m, bool hidden = false) {
     const ModuleInfo& info = module_info(m);
+    const View view = hidden ? hidden_view(m) : dtu_scene().view;
+    if (hidden && using_golden())
+        FAIL("the private cases need the reference solutions in the build");
     // One golden image for every module: the reference's own render of the scene
-    const Image want = expected_image("dtu", "whole-render",
-                                      [&] { return render_with(reference_modules()); });
-    const Image got = render_with(mixed(m));
+    const Image want = hidden ? render_with(reference_modules(), &view)
+                              : expected_image("dtu", "whole-render", [&] {
+                                    return render_with(reference_modules());
+                                });
+    const Image got = render_with(mixed(m), &view);
     REQUIRE(got.width == want.width);
     REQUIRE(got.height == want.height);
     int off = 0, first_i = -1, first_j = -1;
@@ -79,6 +112,7 @@ void check_whole_render(Module m) {
 
 }  // namespace
 
+// Two test cases per module (on separate lines: doctest tells cases apart by line)
 #define RAYLAB_WHOLE_RENDER(id, e)                                          \
     TEST_SUITE(id) {                                                        \
         TEST_CASE(                                                          \
@@ -87,13 +121,29 @@ void check_whole_render(Module m) {
             check_whole_render(Module::e);                                  \
         }                                                                   \
     }
+#define RAYLAB_PRIVATE_RENDER(id, e)                                             \
+    TEST_SUITE(id) {                                                             \
+        TEST_CASE(                                                               \
+            "[private] a whole render of the DTU scene from a hidden viewpoint " \
+            "matches the reference's image") {                                   \
+            check_whole_render(Module::e, true);                                 \
+        }                                                                        \
+    }
 RAYLAB_WHOLE_RENDER("01_pixel_loop", pixel_loop)
+RAYLAB_PRIVATE_RENDER("01_pixel_loop", pixel_loop)
 RAYLAB_WHOLE_RENDER("02_camera", camera)
+RAYLAB_PRIVATE_RENDER("02_camera", camera)
 RAYLAB_WHOLE_RENDER("03_plane", plane)
+RAYLAB_PRIVATE_RENDER("03_plane", plane)
 RAYLAB_WHOLE_RENDER("04_sphere", sphere)
+RAYLAB_PRIVATE_RENDER("04_sphere", sphere)
 RAYLAB_WHOLE_RENDER("05_triangle", triangle)
+RAYLAB_PRIVATE_RENDER("05_triangle", triangle)
 RAYLAB_WHOLE_RENDER("06_point_light", point_light)
+RAYLAB_PRIVATE_RENDER("06_point_light", point_light)
 RAYLAB_WHOLE_RENDER("07_lambert", lambert)
+RAYLAB_PRIVATE_RENDER("07_lambert", lambert)
 RAYLAB_WHOLE_RENDER("08_shadows", shadows)
+RAYLAB_PRIVATE_RENDER("08_shadows", shadows)
 
 }  // namespace raylab::grading
