@@ -212,51 +212,24 @@ bool finish() {
 
 // ---- Calls of the implementation under test -------------------------------------------
 
+namespace {
+// The call of function F of module M in the worker, with the contract's signature Sig
+template <Module M, rpc::Function F, class Sig>
+struct Remote;
+template <Module M, rpc::Function F, class R, class... A>
+struct Remote<M, F, R (*)(A...)> {
+    static R call(A... args) {
+        return grading::call(M, rpc::function_name(static_cast<std::uint32_t>(F)), F,
+                             static_cast<R (*)(A...)>(nullptr), args...);
+    }
+};
+}  // namespace
+
 namespace under_test {
-#define RAYLAB_REMOTE(m, f, ...)                                                       \
-    call(Module::m, #f, rpc::Function::f, static_cast<decltype(&student::f)>(nullptr), \
-         __VA_ARGS__)
-Vec2 image_plane_point(int i, int j, int W, int H) {
-    return RAYLAB_REMOTE(pixel_loop, image_plane_point, i, j, W, H);
-}
-void render_tile(const Tile& tile, const PixelRadiance& radiance,
-                 const ImageView& image) {
-    RAYLAB_REMOTE(pixel_loop, render_tile, tile, radiance, image);
-}
-CameraFrame camera_frame(const Vec3& eye, const Vec3& lookat, const Vec3& up) {
-    return RAYLAB_REMOTE(camera, camera_frame, eye, lookat, up);
-}
-float camera_constant(float fov) {
-    return RAYLAB_REMOTE(camera, camera_constant, fov);
-}
-Ray camera_ray(const PinholeCamera& camera, const Vec2& uv) {
-    return RAYLAB_REMOTE(camera, camera_ray, camera, uv);
-}
-std::optional<Hit> intersect_plane(const Ray& r, const Plane& plane) {
-    return RAYLAB_REMOTE(plane, intersect_plane, r, plane);
-}
-std::optional<Hit> intersect_sphere(const Ray& r, const Sphere& sphere) {
-    return RAYLAB_REMOTE(sphere, intersect_sphere, r, sphere);
-}
-std::optional<Hit> intersect_triangle(const Ray& r, const Vec3& v0, const Vec3& v1,
-                                      const Vec3& v2) {
-    return RAYLAB_REMOTE(triangle, intersect_triangle, r, v0, v1, v2);
-}
-LightSample sample_point_light(const PointLight& light, const Vec3& x) {
-    return RAYLAB_REMOTE(point_light, sample_point_light, light, x);
-}
-Vec3 intensity_from_power(const Vec3& P) {
-    return RAYLAB_REMOTE(point_light, intensity_from_power, P);
-}
-Vec3 lambert(const Vec3& rho, const Vec3& Le, const Vec3& n,
-             const std::vector<LightSample>& lights) {
-    return RAYLAB_REMOTE(lambert, lambert, rho, Le, n, lights);
-}
-bool in_shadow(const Occluder& scene, const Vec3& x, const Vec3& n,
-               const LightSample& sample) {
-    return RAYLAB_REMOTE(shadows, in_shadow, scene, x, n, sample);
-}
-#undef RAYLAB_REMOTE
+#define RAYLAB_FUNCTION(m, f)       \
+    const decltype(&student::f) f = \
+        &Remote<Module::m, rpc::Function::f, decltype(&student::f)>::call;
+#include "raylab/modules.def"
 }  // namespace under_test
 
 const ModuleTable& reference_modules() {

@@ -34,7 +34,7 @@ constexpr double kShareOff = 0.01;
 ModuleTable mixed(Module m) {
     ModuleTable t = reference_modules();
 #define RAYLAB_FUNCTION(e, f) \
-    if (m == Module::e) t.f = &under_test::f;
+    if (m == Module::e) t.f = under_test::f;
 #include "raylab/modules.def"
     return t;
 }

@@ -117,9 +117,12 @@ struct Arg<const Occluder&> {
     void write_out(Buffer&) const {}
 };
 
-// The image crosses both ways: the trusted side's pixels in, the written pixels out
+// The image crosses both ways: the trusted side's pixels in, the written pixels out.
+// Guard pixels on either side catch a pixel loop that writes outside the image.
 template <>
 struct Arg<const ImageView&> {
+    static constexpr size_t kGuard = 256;
+    static constexpr float kMark = -12345.0f;
     std::vector<Vec3> pixels;
     ImageView view{nullptr, 0, 0};
     void read(Buffer& b) {
@@ -128,13 +131,20 @@ struct Arg<const ImageView&> {
         if (view.width < 0 || view.height < 0 ||
             double(view.width) * view.height * sizeof(Vec3) > kMaxPayload)
             throw std::runtime_error("rpc: image too large");
-        pixels.resize(size_t(view.width) * size_t(view.height));
-        b.get_raw(pixels.data(), pixels.size() * sizeof(Vec3));
-        view.pixels = pixels.data();
+        const size_t n = size_t(view.width) * size_t(view.height);
+        pixels.assign(n + 2 * kGuard, Vec3(kMark));
+        b.get_raw(pixels.data() + kGuard, n * sizeof(Vec3));
+        view.pixels = pixels.data() + kGuard;
     }
     const ImageView& get() const { return view; }
     void write_out(Buffer& b) const {
-        b.put_raw(pixels.data(), pixels.size() * sizeof(Vec3));
+        const size_t n = pixels.size() - 2 * kGuard;
+        for (size_t k = 0; k < kGuard; ++k) {
+            if (pixels[k] != Vec3(kMark) || pixels[kGuard + n + k] != Vec3(kMark))
+                throw std::runtime_error(
+                    "the pixel loop wrote outside the image's pixels");
+        }
+        b.put_raw(pixels.data() + kGuard, n * sizeof(Vec3));
     }
 };
 
