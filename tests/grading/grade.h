@@ -18,6 +18,7 @@ struct Options {
     std::string tests, out, label, expect;
     std::string workers;      // folder with one worker per module ID (scripts/grade.sh)
     std::string private_dir;  // the instructor's private cases (hidden tests)
+    std::string only;         // grade this module only (the viewer's "Run tests")
     bool reference = false;
     double timeout = 10.0;
     double points = 10.0;
@@ -76,6 +77,8 @@ std::string table(const std::vector<ModuleResult>& modules, const std::string& l
 std::string module_output(const ModuleResult& m, size_t max_cases = 12);
 /// JUnit XML: one testsuite per module, one testcase per test case.
 std::string junit(const std::vector<ModuleResult>& modules);
+/// Every case of every module with its status and message, for the viewer's "Run tests".
+std::string cases_json(const std::vector<ModuleResult>& modules);
 /// Gradescope's results.json: score, output, and one test per module.
 std::string results_json(const std::vector<ModuleResult>& modules,
                          const std::string& summary);

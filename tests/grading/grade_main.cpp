@@ -31,6 +31,7 @@ constexpr const char* kUsage = R"(Usage: raylab-grade --tests FILE --out DIR [op
   --source ID=FILE      the hand-in's file graded for module ID (for the reports)
   --workers DIR         DIR/NN_name is the worker (student code) graded for module NN_name
                         (default: the worker of this build's exercises/)
+  --only ID             grade module ID only (the viewer's "Run tests" does this)
   --private DIR         the instructor's private cases (hidden tests), kept out of releases
   --label TEXT          what is graded, for the reports (default: the implementation)
   --expect MODE         exit 1 unless: full (every module full marks), not-started (every
@@ -111,6 +112,8 @@ Options parse(int argc, char** argv) {
             o.sources[v.substr(0, eq)] = v.substr(eq + 1);
         } else if (a == "--workers") {
             o.workers = value();
+        } else if (a == "--only") {
+            o.only = value();
         } else if (a == "--private") {
             o.private_dir = value();
         } else if (a == "--label") {
@@ -146,6 +149,7 @@ int main(int argc, char** argv) {
     const std::map<std::string, std::vector<std::string>> names = list_cases(o);
     std::vector<ModuleResult> modules;
     for (const ModuleInfo& info : raylab::module_infos()) {
+        if (!o.only.empty() && o.only != info.id) continue;
         const auto it = names.find(info.id);
         if (it == names.end()) die(std::string("the graders have no suite ") + info.id);
         modules.push_back(grade_module(o, info, it->second));
@@ -157,6 +161,7 @@ int main(int argc, char** argv) {
         details += "\n" + clean_text(module_output(m));
     write_file(o.out + "/summary.txt", summary + details);
     write_file(o.out + "/junit.xml", junit(modules));
+    write_file(o.out + "/cases.json", cases_json(modules));
     write_file(o.out + "/results.json", results_json(modules, summary));
     std::cout << "\nDetails: " << o.out << "/summary.txt; JUnit: " << o.out
               << "/junit.xml; Gradescope: " << o.out << "/results.json\n";

@@ -243,6 +243,26 @@ std::string junit(const std::vector<ModuleResult>& modules) {
     return s.str();
 }
 
+std::string cases_json(const std::vector<ModuleResult>& modules) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const ModuleResult& m : modules) {
+        nlohmann::json cases = nlohmann::json::array();
+        for (const CaseResult& c : m.cases)
+            cases.push_back({{"name", clean_text(c.name)},
+                             {"status", c.status},
+                             {"message", clean_text(c.message)}});
+        out.push_back({{"id", m.info->id},
+                       {"status", m.status},
+                       {"passed", m.passed},
+                       {"score", m.score},
+                       {"max_score", m.max_score},
+                       {"first_failure", clean_text(m.first_failure)},
+                       {"build_error", clean_text(m.build_error)},
+                       {"cases", cases}});
+    }
+    return out.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
 // Which part of the module's points came from the public and the private tests
 nlohmann::json part_points(const ModuleResult& m) {
     int hidden = 0, hidden_passed = 0;
