@@ -101,6 +101,11 @@ for name in "${names[@]}"; do
     fi
     grep -q $'\x1b' "$out/results.json" "$out/summary.txt" &&
         { echo "FAIL $name: a terminal escape reached the reports"; failed=1; }
+    # What the student's code printed is kept, at most 1 MiB per worker
+    for f in "$out"/logs/*.worker.log; do
+        [[ ! -f $f || $(stat -c %s "$f") -le 1048576 ]] ||
+            { echo "FAIL $name: $(basename "$f") holds more than 1 MiB"; failed=1; }
+    done
     sed -n '4,12p' "$summary"
 done
 
