@@ -144,6 +144,7 @@ void log_line(const std::string& text) {
 // The worker crashed or hung: the case under way fails with kind, the module stops there
 // (raylab-grade reads the line), as a crash of the old in-process graders did
 void worker_lost(const std::string& kind, const std::string& message) {
+    shutdown_worker();
     std::printf("[raylab] %s\n", message.c_str());
     std::fflush(stdout);
     if (the_log && the_log->current)

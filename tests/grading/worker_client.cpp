@@ -199,7 +199,13 @@ class Worker {
         waitpid(pid_, nullptr, 0);
         close(fd_);
         pid_ = -1;
-        if (!private_dir_.empty()) std::filesystem::remove_all(private_dir_);
+        remove_private_dir();
+    }
+
+    void remove_private_dir() {
+        std::error_code ignored;
+        if (!private_dir_.empty()) std::filesystem::remove_all(private_dir_, ignored);
+        private_dir_.clear();
     }
 
     bool seccomp() const { return seccomp_; }
@@ -250,6 +256,7 @@ class Worker {
         }
         close(fd_);
         pid_ = -1;
+        remove_private_dir();
         std::string how = "exited";
         int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
         // bubblewrap reports a signal that ended the worker as 128 + signal
@@ -286,6 +293,10 @@ rpc::Buffer read_message(rpc::Header& h, const char* doing) {
 }
 
 }  // namespace
+
+void shutdown_worker() {
+    worker().stop();
+}
 
 std::string sandbox_description() {
     std::string s = bwrap_works()

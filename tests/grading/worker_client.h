@@ -29,6 +29,9 @@ struct Callbacks {
 /// worker has started.
 std::string sandbox_description();
 
+/// Ends the worker and removes its private folder (before the trusted process exits).
+void shutdown_worker();
+
 /// Appends a line to the grade log (RAYLAB_GRADE_LOG), if there is one (main.cpp).
 void log_line(const std::string& line);
 
