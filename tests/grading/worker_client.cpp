@@ -95,6 +95,7 @@ pid_t spawn(const std::vector<std::string>& argv, int fd, const std::string& log
     const pid_t pid = fork();
     if (pid != 0) return pid;
     prctl(PR_SET_PDEATHSIG, SIGKILL);
+    setpgid(0, 0);  // its own process group: killing it ends whatever it started
     const int null = open("/dev/null", O_RDWR);
     const int out =
         log.empty() ? null : open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
@@ -195,6 +196,7 @@ class Worker {
     // The worker is out of step (a callback of the trusted side threw): start afresh
     void stop() {
         if (pid_ <= 0) return;
+        kill(-pid_, SIGKILL);
         kill(pid_, SIGKILL);
         waitpid(pid_, nullptr, 0);
         close(fd_);
@@ -251,6 +253,7 @@ class Worker {
             if (done == 0) usleep(10000);
         }
         if (done == 0) {
+            kill(-pid_, SIGKILL);
             kill(pid_, SIGKILL);
             waitpid(pid_, &status, 0);
         }

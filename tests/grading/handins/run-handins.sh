@@ -64,7 +64,7 @@ for name in "${names[@]}"; do
     materialize "$HERE/$name" "$WORK/$name" "$out"
     echo "==> $name"
     if ! SUBMISSION=$WORK/$name GRADE_OUT=$out GRADE_BUILD_DIR=$BUILD \
-        "$ROOT/scripts/grade.sh" --timeout 4 >"$WORK/$name.log" 2>&1; then
+        "$ROOT/scripts/grade.sh" --timeout 8 >"$WORK/$name.log" 2>&1; then
         echo "FAIL $name: grade.sh failed"; tail -n 20 "$WORK/$name.log"; failed=1; continue
     fi
     summary=$out/summary.txt
