@@ -19,6 +19,7 @@
 set -euo pipefail
 HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 ROOT=$(cd "$HERE/../../.." && pwd)
+[[ -f $ROOT/solutions/01_pixel_loop.cpp ]] || { echo "needs solutions/"; exit 1; }
 BUILD=$(cd "${1:?usage: run-handins.sh BUILD_DIR [NAME...]}" && pwd)
 shift
 names=("$@")
