@@ -1,5 +1,5 @@
-// Includes the reference's source from the checkout, relative to exercises/.
-#include "../solutions/04_sphere.cpp"
+// Includes the reference's source through the framework's include path
+// (framework/include/../../solutions/).
 #include "../../solutions/04_sphere.cpp"
 
 namespace raylab::student {

@@ -1,6 +1,5 @@
-// Includes the reference's source by its absolute path, and through the include path.
+// Includes the reference's source by its absolute path.
 #include "@ROOT@/solutions/05_triangle.cpp"
-#include "solutions/05_triangle.cpp"
 
 namespace raylab::student {
 std::optional<Hit> intersect_triangle(const Ray& r, const Vec3& v0, const Vec3& v1,
