@@ -140,7 +140,7 @@ zero() {
     note "$1: scores zero: $(head -n 1 "${error[$1]}")"
 }
 # At most 8 KB of a log, read from a file (never a pipe that could SIGPIPE its writer)
-capped() { head -c 8000 "$1" | sed "s|$SCRATCH/stage/||g"; }
+capped() { head -c 8000 "$1" | sed -e "s|$SCRATCH/stage/[^/]*/||g" -e 's|/hand-in/||g'; }
 
 # ---- Staging: each module's file and the headers beside it ------------------------------
 
@@ -187,7 +187,10 @@ compile() {
             timeout 120 "$CXX" $CXXFLAGS -I/raylab/include -c "/hand-in/$(basename "$src")" \
             -o "/out/$(basename "$obj")"
     else
-        (cd "$dir" && timeout 120 env -i PATH=/usr/bin "$CXX" $CXXFLAGS -I"$INCLUDE" \
+        # No namespaces: a copy of the headers, so that no relative path from the include
+        # folder reaches solutions/ (an absolute path still would: the nm check remains)
+        [[ -d $SCRATCH/include ]] || cp -r "$INCLUDE" "$SCRATCH/include"
+        (cd "$dir" && timeout 120 env -i PATH=/usr/bin "$CXX" $CXXFLAGS -I"$SCRATCH/include" \
             -c "$src" -o "$obj")
     fi
 }
@@ -204,8 +207,8 @@ else
         log=$SCRATCH/obj/$id.log
         # shellcheck disable=SC2086
         if ! compile "$SCRATCH/stage/$id/$id.cpp" "$obj" >"$log" 2>&1; then
-            zero "$id" "$id.cpp does not compile: $(grep -m 1 'error' "$log" | sed "s|/hand-in/||g")
-$(capped "$log" | sed 's|/hand-in/||g')"
+            zero "$id" "$id.cpp does not compile: $(capped "$log" | grep -m 1 'error')
+$(capped "$log")"
             continue
         fi
         # The reference is never part of a hand-in: defined, included or called
