@@ -186,10 +186,15 @@ bool setup() {
             return false;
         }
     }
-    if (std::getenv("RAYLAB_WORKER") == nullptr)
+    if (std::getenv("RAYLAB_WORKER") == nullptr) {
         setenv("RAYLAB_WORKER",
                s.impl == Impl::student ? RAYLAB_WORKER_STUDENT : RAYLAB_WORKER_REFERENCE,
                1);
+#if RAYLAB_SANITIZED_WORKERS
+        setenv("RAYLAB_WORKER_SANITIZED", "1",
+               1);  // this build's workers: no memory limit
+#endif
+    }
     std::printf("[raylab] grading the %s code against %s\n",
                 s.impl == Impl::student ? "student's" : "reference",
                 s.golden ? ("the golden data in " + s.golden_dir).c_str()

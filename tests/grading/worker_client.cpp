@@ -88,6 +88,7 @@ std::vector<std::string> bwrap_args(const std::string& worker) {
 // pid. The child's output goes to log (or /dev/null).
 pid_t spawn(const std::vector<std::string>& argv, int fd, const std::string& log,
             const std::string& private_dir) {
+    const bool sanitized_worker = !env_or("RAYLAB_WORKER_SANITIZED", "").empty();
     std::vector<char*> args;
     for (const std::string& a : argv)
         args.push_back(const_cast<char*>(a.c_str()));
@@ -106,7 +107,9 @@ pid_t spawn(const std::vector<std::string>& argv, int fd, const std::string& log
     for (int k = 4; k < 1024; ++k)
         close(k);
     limit(RLIMIT_CPU, rlim_t(call_timeout() * 4 + 2));
-    limit(RLIMIT_AS, rlim_t(1) << 31);     // 2 GiB
+    // 2 GiB, except for this build's own sanitizer-instrumented workers (ASan reserves
+    // terabytes of address space for its shadow memory)
+    if (!sanitized_worker) limit(RLIMIT_AS, rlim_t(1) << 31);
     limit(RLIMIT_FSIZE, rlim_t(1) << 20);  // 1 MiB: the log and any file it writes
     limit(RLIMIT_CORE, 0);
     // Past 1 MiB a write fails instead of killing the worker: debug prints cost nothing
