@@ -127,7 +127,7 @@ mkdir -p "$BUILD"
             $CXX $CXXFLAGS -I"$INCLUDE" -c "$FALLBACK/$id.cpp" -o "$o.tmp" && mv "$o.tmp" "$o"
         fi
     done
-) 9>"$BUILD.lock" || die "building the graders failed (see $BUILD/build.log)"
+) 9>"$BUILD/.grade.lock" || die "building the graders failed (see $BUILD/build.log)"
 # shellcheck disable=SC1091
 source "$BUILD/tests/grading/worker-toolchain.sh"
 CXX=$(readlink -f "$CXX") # /usr/bin/c++ leads through /etc/alternatives, outside the sandbox
