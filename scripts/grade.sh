@@ -1,32 +1,35 @@
 #!/usr/bin/env bash
-# Grades the exercises, module by module: builds them in a scratch build and runs the
-# graders (tests/grading/), one process per module with a time limit.
+# Grades one hand-in, module by module. The student's files are staged in a private
+# scratch folder outside the source tree, each compiled on its own (in a sandbox that sees
+# only framework/include) and linked into one grading worker per module; the trusted
+# graders (tests/grading/) call that worker and decide every score.
 #
-# Usage: scripts/grade.sh [--reference] [--timeout SECONDS] [--points N]
+# Usage: scripts/grade.sh [--reference] [--timeout SECONDS] [--points N] [--expect MODE]
+#                         [--private DIR]
 #   (also: ./scripts/dev.sh grade, make grade, make grade-reference)
 #   --reference        grade the reference solutions (solutions/) instead of exercises
 #   --timeout SECONDS  time limit per module (default 10)
 #   --points N         points per module (default 10)
 #   --expect MODE      exit 1 unless the scores are as expected: full, not-started (for CI
 #                      and scripts/make-student-release.sh; see raylab-grade --help)
+#   --private DIR      the instructor's private cases (hidden tests; never in a release)
 #
 # Environment:
 #   SUBMISSION=DIR     grade the NN_name.cpp files found in DIR (a student's unzipped
-#                      hand-in, searched up to three folders deep) instead of exercises/.
-#                      The working tree is not touched. A missing file, or one that does
-#                      not compile, scores zero on its module with the compiler's message;
-#                      the other modules are still graded.
-#   GRADE_OUT=DIR      where the reports go (default build/grade/): summary.txt (the table
-#                      and every failure), junit.xml, results.json (Gradescope), logs/,
-#                      images/
-#   GRADE_BUILD_DIR=DIR  the scratch build (default build-grade/); reused between runs, so
-#                      grading a class rebuilds only the exercise files
-#   GRADE_TIMEOUT=S, GRADE_POINTS=N  defaults for --timeout and --points
+#                      hand-in) instead of exercises/. For each module the shallowest
+#                      NN_name.cpp up to two folders deep is used (the report names it);
+#                      headers beside it are staged with it; CRLF line ends are accepted.
+#                      A missing file, or one that does not compile or link, scores zero
+#                      on its module with the compiler's message; the others are graded.
+#   GRADE_OUT=DIR      where the reports go (default build/grade/): summary.txt, junit.xml,
+#                      results.json (Gradescope), logs/, images/
+#   GRADE_BUILD_DIR=DIR  the build of the trusted graders (default build-grade/), shared
+#                      by concurrent runs (a lock serialises its updates)
+#   GRADE_PRIVATE=DIR, GRADE_TIMEOUT=S, GRADE_POINTS=N  defaults for the options
 #
-# Exit status: 0 when grading ran (whatever the scores), 1 when it could not (or when
-# --expect was not met).
-# Loop over a class:
-#   for d in handins/*/; do SUBMISSION=$d GRADE_OUT=grades/$(basename "$d") make grade; done
+# Several gradings may run at once (each has its own scratch folder; give each its own
+# GRADE_OUT). Exit status: 0 when grading ran (whatever the scores), 1 when it could not
+# (or when --expect was not met).
 set -euo pipefail
 # shellcheck source=lib/common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
@@ -38,6 +41,7 @@ usage() { sed -n '2,/^[^#]/{/^#/s/^# \{0,1\}//p}' "$0"; }
 reference=0
 timeout=${GRADE_TIMEOUT:-10}
 points=${GRADE_POINTS:-10}
+private=${GRADE_PRIVATE:-}
 expect=''
 while (($#)); do
     case $1 in
@@ -48,6 +52,8 @@ while (($#)); do
         --points=*) points=${1#*=} ;;
         --expect) expect=${2:?--expect needs a value}; shift ;;
         --expect=*) expect=${1#*=} ;;
+        --private) private=${2:?--private needs a value}; shift ;;
+        --private=*) private=${1#*=} ;;
         -h | --help) usage; exit 0 ;;
         *) usage >&2; die "unknown option '$1'" ;;
     esac
@@ -62,9 +68,11 @@ absolute() { [[ $1 == /* ]] && printf '%s' "$1" || printf '%s/%s' "$PWD" "$1"; }
 
 OUT=$(absolute "${GRADE_OUT:-$RAYLAB_ROOT/build/grade}")
 BUILD=$(absolute "${GRADE_BUILD_DIR:-$RAYLAB_ROOT/build-grade}")
-STAGE=$BUILD/submission # the exercise files this build compiles
-MODULES=(01_pixel_loop 02_camera 03_plane 04_sphere 05_triangle 06_point_light 07_lambert
-    08_shadows)
+[[ -z $private ]] || private=$(absolute "$private")
+# The modules, from the registry
+mapfile -t MODULES < <(sed -n 's/^RAYLAB_MODULE([a-z_0-9]*, "\([0-9][0-9]_[a-z_0-9]*\)".*/\1/p' \
+    "$RAYLAB_ROOT/framework/include/raylab/modules.def")
+((${#MODULES[@]})) || die "no modules in framework/include/raylab/modules.def"
 # The untouched stubs stand in for a module that is missing or does not build: a student
 # release ships them in tests/grading/stubs/; here exercises/ holds them
 FALLBACK=$RAYLAB_ROOT/tests/grading/stubs
@@ -74,7 +82,7 @@ if ((reference)); then
     [[ -f $RAYLAB_ROOT/solutions/01_pixel_loop.cpp ]] ||
         die "there are no reference solutions (solutions/) in this copy, so --reference cannot run"
     [[ -z ${SUBMISSION:-} ]] || warn "--reference grades solutions/; SUBMISSION is ignored"
-    SOURCE=$RAYLAB_ROOT/exercises
+    SOURCE=''
     label="reference solutions (solutions/)"
 elif [[ -n ${SUBMISSION:-} ]]; then
     SOURCE=$(absolute "$SUBMISSION")
@@ -85,123 +93,153 @@ else
     label="exercises/ ($SOURCE)"
 fi
 
-mkdir -p "$OUT" "$STAGE"
-rm -rf "$OUT/logs" "$OUT/images" "$OUT/build-errors"
+# A private scratch folder per run: staged files, objects, workers. Its name says nothing
+# about grading: the sandbox's process list shows the worker's path
+SCRATCH=$(mktemp -d)
+trap 'rm -rf "$SCRATCH"' EXIT
+mkdir -p "$SCRATCH/stage" "$SCRATCH/obj" "$SCRATCH/workers" "$OUT"
+rm -rf "$OUT/logs" "$OUT/images" "$OUT/build-errors" "$OUT/results.json" "$OUT/junit.xml" \
+    "$OUT/summary.txt"
 mkdir -p "$OUT/logs" "$OUT/build-errors"
-declare -A error=() # module -> file with the reason it scores zero
 
-# Replaces module $1 by its stub, with reason $2 (a file's contents or a line)
-fall_back() {
-    local id=$1
-    cp "$FALLBACK/$id.cpp" "$STAGE/$id.cpp"
-    error[$id]=$OUT/build-errors/$id.txt
-    printf '%s\n' "$2" >"${error[$id]}"
-    note "$id: scores zero: $(head -n 1 "${error[$id]}")"
-}
+# ---- The trusted graders (shared build, locked) ----------------------------------------
 
-# ---- The submission's files -----------------------------------------------------------
-
-step "Collecting the exercise files of the $label"
-for id in "${MODULES[@]}"; do
-    # The shallowest NN_name.cpp in the submission
-    found=$(find "$SOURCE" -maxdepth 3 -name "$id.cpp" -type f -printf '%d %p\n' 2>/dev/null |
-        sort -n | head -n 1 | cut -d' ' -f2-)
-    if [[ -z $found ]]; then
-        fall_back "$id" "$id.cpp is missing from $SOURCE"
-        continue
+step "Building the trusted graders in $BUILD/"
+mkdir -p "$BUILD"
+(
+    flock 9
+    if [[ ! -f $BUILD/build.ninja ]]; then
+        cmake -S "$RAYLAB_ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+            -DRAYLAB_WITH_GUI=OFF -DRAYLAB_WERROR=OFF -DRAYLAB_EXERCISES_DIR="$FALLBACK" \
+            >"$BUILD/configure.log" 2>&1 || { cat "$BUILD/configure.log"; exit 1; }
     fi
-    # Copy only when changed: an unchanged file keeps its object in the scratch build
-    cmp -s "$found" "$STAGE/$id.cpp" || cp "$found" "$STAGE/$id.cpp"
-done
+    targets=(raylab-grading-tests raylab-grade raylab_worker_main raylab_core)
+    ((reference)) && targets+=(raylab-worker-reference)
+    ninja -C "$BUILD" "${targets[@]}" >"$BUILD/build.log" 2>&1 || { tail -n 40 "$BUILD/build.log"; exit 1; }
+    # The stubs' objects, for the modules a worker does not take from the hand-in
+    # shellcheck disable=SC1091
+    source "$BUILD/tests/grading/worker-toolchain.sh"
+    mkdir -p "$BUILD/stub-objects"
+    for id in "${MODULES[@]}"; do
+        o=$BUILD/stub-objects/$id.o
+        if [[ ! -f $o || $FALLBACK/$id.cpp -nt $o ]]; then
+            # shellcheck disable=SC2086
+            $CXX $CXXFLAGS -I"$INCLUDE" -c "$FALLBACK/$id.cpp" -o "$o.tmp" && mv "$o.tmp" "$o"
+        fi
+    done
+) 9>"$BUILD/.grade.lock" || die "building the graders failed (see $BUILD/build.log)"
+# shellcheck disable=SC1091
+source "$BUILD/tests/grading/worker-toolchain.sh"
+CXX=$(readlink -f "$CXX") # /usr/bin/c++ leads through /etc/alternatives, outside the sandbox
 
-# ---- Scratch build ---------------------------------------------------------------------
+declare -A error=() # module -> file with the reason it scores zero
+declare -A used=()  # module -> the hand-in's file that was graded
+zero() {
+    error[$1]=$OUT/build-errors/$1.txt
+    printf '%s\n' "$2" >"${error[$1]}"
+    note "$1: scores zero: $(head -n 1 "${error[$1]}")"
+}
+# At most 8 KB of a log, read from a file (never a pipe that could SIGPIPE its writer)
+capped() { head -c 8000 "$1" | sed -e "s|$SCRATCH/stage/[^/]*/||g" -e 's|/hand-in/||g'; }
 
-configured=$(sed -n 's/^RAYLAB_EXERCISES_DIR:PATH=//p' "$BUILD/CMakeCache.txt" 2>/dev/null || true)
-if [[ $configured != "$STAGE" || ! -f $BUILD/build.ninja ]]; then
-    step "Configuring the scratch build $BUILD/"
-    cmake -S "$RAYLAB_ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-        -DRAYLAB_WITH_GUI=OFF -DRAYLAB_WERROR=OFF -DRAYLAB_EXERCISES_DIR="$STAGE" >"$OUT/logs/configure.log" 2>&1 ||
-        die "configuring $BUILD/ failed: see $OUT/logs/configure.log"
+# ---- Staging: each module's file and the headers beside it ------------------------------
+
+if [[ -n $SOURCE ]]; then
+    step "Staging the exercise files of the $label"
+    for id in "${MODULES[@]}"; do
+        # The shallowest NN_name.cpp, at most two folders deep; ties by name
+        found=$(find "$SOURCE" -maxdepth 3 -name "$id.cpp" -type f -printf '%d\t%p\n' \
+            2>/dev/null | sort -t$'\t' -k1,1n -k2,2 | head -n 1 | cut -f2-) || true
+        if [[ -z $found ]]; then
+            zero "$id" "$id.cpp is missing from the hand-in"
+            continue
+        fi
+        used[$id]=${found#"$SOURCE"/}
+        dir=$SCRATCH/stage/$id
+        mkdir -p "$dir"
+        # Helper headers beside the file; CRLF line ends become LF
+        for f in "$found" "$(dirname "$found")"/*.h "$(dirname "$found")"/*.hpp; do
+            [[ -f $f ]] && sed 's/\r$//' "$f" >"$dir/$(basename "$f")"
+        done
+    done
 fi
 
-# The compiler's messages without ninja's noise and the scratch folder's path
-compiler_message() {
-    grep -v -e '^\[[0-9]*/[0-9]*\]' -e '^FAILED: ' -e '^ninja: ' -e ' -c /' "$1" |
-        sed "s|$STAGE/||g" | head -n 60
+# ---- Compiling and linking one worker per module ----------------------------------------
+
+sandbox=none
+if bwrap --unshare-all --die-with-parent --ro-bind /usr /usr --symlink usr/lib /lib \
+    --symlink usr/lib64 /lib64 --symlink usr/bin /bin /usr/bin/true 2>/dev/null; then
+    sandbox=bwrap
+fi
+
+# Compiles $1 (a staged file) to $2: in a sandbox that sees /usr, framework/include and
+# the staged folder only, so that no path leads to solutions/
+compile() {
+    local src=$1 obj=$2 dir
+    dir=$(dirname "$src")
+    if [[ $sandbox == bwrap ]]; then
+        bwrap --unshare-all --die-with-parent --new-session --ro-bind /usr /usr \
+            --symlink usr/lib /lib --symlink usr/lib64 /lib64 --symlink usr/bin /bin \
+            --ro-bind-try /etc/ld.so.cache /etc/ld.so.cache --proc /proc --dev /dev \
+            --tmpfs /tmp --ro-bind "$INCLUDE" /raylab/include --ro-bind "$dir" /hand-in \
+            --bind "$(dirname "$obj")" /out --chdir /hand-in --clearenv \
+            --setenv PATH /usr/bin \
+            timeout 120 "$CXX" $CXXFLAGS -I/raylab/include -c "/hand-in/$(basename "$src")" \
+            -o "/out/$(basename "$obj")"
+    else
+        # No namespaces: a copy of the headers, so that no relative path from the include
+        # folder reaches solutions/ (an absolute path still would: the nm check remains)
+        [[ -d $SCRATCH/include ]] || cp -r "$INCLUDE" "$SCRATCH/include"
+        (cd "$dir" && timeout 120 env -i PATH=/usr/bin "$CXX" $CXXFLAGS -I"$SCRATCH/include" \
+            -c "$src" -o "$obj")
+    fi
 }
 
-step "Compiling each exercise file on its own"
-for id in "${MODULES[@]}"; do
-    [[ -n ${error[$id]:-} ]] && continue
-    object=$(ninja -C "$BUILD" -t targets all | grep -o "^[^:]*submission/$id\.cpp\.o" | head -n 1)
-    [[ -n $object ]] || die "the scratch build has no object for $id.cpp"
-    log=$OUT/logs/compile-$id.log
-    if ! ninja -C "$BUILD" "$object" >"$log" 2>&1; then
-        message=$(compiler_message "$log")
-        fall_back "$id" "$id.cpp does not compile: $(grep -m 1 'error' <<<"$message")
-$message"
-        continue
-    fi
-    # Grading must see the student's own code, not a call into the reference
-    calls=$(nm -C "$BUILD/$object" 2>/dev/null | grep -o 'U raylab::reference::[a-z_]*' |
-        sed 's/^U //' | sort -u | paste -sd ' ' || true)
-    if [[ -n $calls ]]; then
-        fall_back "$id" "$id.cpp calls the reference solution ($calls), which is not allowed"
-    fi
-done
-
-# Which module a student function belongs to
-module_of() {
-    case $1 in
-        image_plane_point | render_tile) echo 01_pixel_loop ;;
-        camera_frame | camera_constant | camera_ray) echo 02_camera ;;
-        intersect_plane) echo 03_plane ;;
-        intersect_sphere) echo 04_sphere ;;
-        intersect_triangle) echo 05_triangle ;;
-        sample_point_light | intensity_from_power) echo 06_point_light ;;
-        lambert) echo 07_lambert ;;
-        in_shadow) echo 08_shadows ;;
-    esac
-}
-
-step "Building the graders"
-for attempt in 1 2 3; do
-    log=$OUT/logs/build.log
-    if ninja -C "$BUILD" raylab-grading-tests raylab-grade >"$log" 2>&1; then
-        break
-    fi
-    # A link error: blame the modules it names (a function defined with another
-    # signature, or twice), put their stubs in and try again
-    blamed=()
-    while read -r fn; do
-        m=$(module_of "$fn")
-        [[ -n $m ]] && blamed+=("$m")
-    done < <(grep -o "undefined reference to \`raylab::student::[a-z_]*" "$log" |
-        sed 's/.*:://' | sort -u)
-    while read -r m; do
-        blamed+=("$m")
-    done < <(grep -e 'multiple definition' "$log" | grep -o '0[1-8]_[a-z_]*\.cpp' |
-        sed 's/\.cpp$//' | sort -u)
-    progress=0
-    for m in $(printf '%s\n' "${blamed[@]}" | sort -u); do
-        [[ -n ${error[$m]:-} ]] && continue
-        message=$(grep -e 'undefined reference' -e 'multiple definition' "$log" |
-            sed -e "s|$STAGE/||g" -e 's|^/usr/bin/ld: ||' | sort -u | head -n 20)
-        fall_back "$m" "$m.cpp does not link with the framework (is a function missing, defined with another signature, or defined twice?): $(head -n 1 <<<"$message")
-$message"
-        progress=1
+if ((reference)); then
+    for id in "${MODULES[@]}"; do
+        ln -s "$BUILD/tests/grading/raylab-worker-reference" "$SCRATCH/workers/$id"
     done
-    ((progress)) || die "building the graders failed: see $log
-$(compiler_message "$log" | head -n 30)"
-done
+else
+    step "Compiling each exercise file on its own and linking its worker"
+    for id in "${MODULES[@]}"; do
+        [[ -n ${error[$id]:-} ]] && continue
+        obj=$SCRATCH/obj/$id.o
+        log=$SCRATCH/obj/$id.log
+        # shellcheck disable=SC2086
+        if ! compile "$SCRATCH/stage/$id/$id.cpp" "$obj" >"$log" 2>&1; then
+            zero "$id" "$id.cpp does not compile: $(capped "$log" | grep -m 1 'error')
+$(capped "$log")"
+            continue
+        fi
+        # The reference is never part of a hand-in: defined, included or called
+        refs=$(nm -C "$obj" | grep -o 'raylab::reference::[a-z_0-9]*' | sort -u | paste -sd ' ') || true
+        if [[ -n $refs ]]; then
+            zero "$id" "$id.cpp refers to the reference solution ($refs), which is not allowed"
+            continue
+        fi
+        stubs=()
+        for other in "${MODULES[@]}"; do
+            [[ $other == "$id" ]] || stubs+=("$BUILD/stub-objects/$other.o")
+        done
+        # shellcheck disable=SC2086
+        if ! "$CXX" -o "$SCRATCH/workers/$id" "$obj" "${stubs[@]}" "$WORKER_MAIN" "$CORE" \
+            $LIBS >"$log" 2>&1; then
+            zero "$id" "$id.cpp does not link with the framework (is a function missing, defined with another signature, or defined twice?)
+$(capped "$log" | grep -e 'undefined reference' -e 'multiple definition' -e 'error' | head -n 20)"
+        fi
+    done
+    chmod -R a+rX "$SCRATCH"
+fi
 
 # ---- Grading ---------------------------------------------------------------------------
 
 args=(--tests "$BUILD/tests/grading/raylab-grading-tests" --out "$OUT" --timeout "$timeout"
-    --points "$points" --label "$label")
+    --points "$points" --label "$label" --workers "$SCRATCH/workers")
 ((reference)) && args+=(--reference)
 [[ -n $expect ]] && args+=(--expect "$expect")
+[[ -n $private ]] && args+=(--private "$private")
 for id in "${!error[@]}"; do args+=(--module-error "$id=${error[$id]}"); done
+for id in "${!used[@]}"; do args+=(--source "$id=${used[$id]}"); done
 
 step "Grading, one process per module (time limit ${timeout} s each)"
 "$BUILD/tests/grading/raylab-grade" "${args[@]}"

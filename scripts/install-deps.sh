@@ -25,7 +25,7 @@ group_packages() {
         build) echo g++ make cmake ninja-build pkg-config ;;
         # libgl-dev/libopengl-dev: the GL headers and libraries FindOpenGL (GLVND) and GLFW use
         libs) echo libglm-dev libtinyobjloader-dev libstb-dev doctest-dev libimgui-dev \
-            libglfw3-dev libgl-dev libopengl-dev ;;
+            libglfw3-dev libgl-dev libopengl-dev nlohmann-json3-dev libseccomp-dev bubblewrap ;;
         # xauth is only recommended by xvfb, but xvfb-run needs it; Mesa's llvmpipe renders GL
         gui | gui-test) echo xvfb xauth libgl1-mesa-dri xdotool ;;
         format) echo clang-format ;;

@@ -1,9 +1,11 @@
 // viewer/grader.h: runs the graders of each module in a child process.
 //
-// The panel's "Run tests" starts raylab-grading-tests once per module with
-// --test-suite=NN_name and reads doctest's summary line. A child process keeps a crashing
-// or hanging student module from taking the viewer down: a crash is reported with its
-// signal, a hang is killed after a time limit.
+// The panel's "Run tests" runs the command line's runner, raylab-grade --only NN_name
+// (next to raylab-grading-tests), so the viewer and scripts/grade.sh grade alike and say
+// the same words ("not started", "time limit", ...); it reads the runner's cases.json.
+// Without the runner it falls back to raylab-grading-tests --test-suite=NN_name and
+// doctest's summary line. Child processes keep a crashing or hanging module from taking
+// the viewer down.
 #pragma once
 
 #include <array>
@@ -47,19 +49,45 @@ ChildResult run_child(const std::vector<std::string>& argv,
                       const std::vector<std::string>& env, double timeout_seconds,
                       const std::atomic<bool>* cancel = nullptr);
 
+/// One test case's outcome, as the runner reports it.
+struct CaseGrade {
+    std::string name;
+    std::string status;  ///< pass, fail, stub, crash, not run
+    std::string message;
+};
+
 /// One module's grading outcome.
 struct ModuleGrade {
-    enum class Status { not_run, running, passed, failed, no_tests, crashed, error };
+    enum class Status {
+        not_run,
+        running,
+        passed,
+        failed,
+        no_tests,
+        crashed,
+        error,
+        not_started
+    };
     Status status = Status::not_run;
     DoctestSummary counts;
-    std::string summary;  ///< one line for the panel, e.g. "12/14 passed"
-    std::string output;   ///< the grader's console output
+    std::string summary;           ///< one line for the panel, e.g. "12/14 passed"
+    std::string output;            ///< the grader's console output
+    std::vector<CaseGrade> cases;  ///< per case, when the runner graded it
 };
 
 /// Grades module id with the grading binary, in a child process.
 ModuleGrade grade_module(const std::string& binary, const std::string& id,
                          double timeout_seconds,
                          const std::atomic<bool>* cancel = nullptr);
+
+/// Grades module id with the runner (raylab-grade) and the grading binary tests, in a
+/// child process; the runner's words and per-case results.
+ModuleGrade grade_with_runner(const std::string& runner, const std::string& tests,
+                              const std::string& id, double timeout_seconds,
+                              const std::atomic<bool>* cancel = nullptr);
+
+/// The runner raylab-grade beside the grading binary, or "" when missing.
+std::string find_runner(const std::string& grading_binary);
 
 /// The grading binary: $RAYLAB_GRADING_TESTS when set, else
 /// <viewer's directory>/../../tests/grading/raylab-grading-tests. Empty when missing.

@@ -65,6 +65,34 @@ void module_row(Viewer& v, const ModuleInfo& info, const ModuleGrade& grade) {
     ImGui::PopID();
 }
 
+ImVec4 case_colour(const std::string& status) {
+    if (status == "pass") return kGreen;
+    if (status == "fail" || status == "crash") return kRed;
+    return kGrey;  // stub (not started), not run
+}
+
+// The result box of one module: every case in its colour, the messages wrapped, scrolled
+void grade_box(const ModuleInfo& info, const ModuleGrade& grade) {
+    ImGui::TextDisabled("tests of %s (click its result to hide):", info.id);
+    ImGui::BeginChild("grader output", ImVec2(0.0f, 220.0f), true);
+    ImGui::PushTextWrapPos(0.0f);
+    if (!grade.output.empty() && grade.status != ModuleGrade::Status::passed)
+        ImGui::TextUnformatted(grade.output.c_str());
+    for (const CaseGrade& c : grade.cases) {
+        const std::string mark = c.status == "stub" ? "not started" : c.status;
+        ImGui::PushStyleColor(ImGuiCol_Text, case_colour(c.status));
+        ImGui::TextWrapped("%s: %s", mark.c_str(), c.name.c_str());
+        ImGui::PopStyleColor();
+        if (!c.message.empty() && c.status != "pass" && c.status != "stub") {
+            ImGui::Indent();
+            ImGui::TextUnformatted(c.message.c_str());
+            ImGui::Unindent();
+        }
+    }
+    ImGui::PopTextWrapPos();
+    ImGui::EndChild();
+}
+
 void set_all(Viewer& v, const ModuleSelection& selection) {
     v.state.modules = selection;
     v.state.dirty = true;
@@ -100,14 +128,8 @@ void modules_section(Viewer& v) {
     ImGui::TextDisabled(v.grading_binary.empty() ? "(graders not built)"
                                                  : "(student code, child process)");
     const int shown = v.panel.grade_shown;
-    if (shown >= 0 && !grades[shown].output.empty()) {
-        ImGui::TextDisabled("grader output of %s (click its result to hide):",
-                            module_infos()[shown].id);
-        ImGui::BeginChild("grader output", ImVec2(0.0f, 180.0f), true,
-                          ImGuiWindowFlags_HorizontalScrollbar);
-        ImGui::TextUnformatted(grades[shown].output.c_str());
-        ImGui::EndChild();
-    }
+    if (shown >= 0 && (!grades[shown].output.empty() || !grades[shown].cases.empty()))
+        grade_box(module_infos()[shown], grades[shown]);
 }
 
 void compare_section(Viewer& v) {

@@ -10,13 +10,20 @@
 
 namespace raylab::grade {
 
+/// The name prefix of the hidden test cases (graded only with --private).
+inline constexpr const char* kPrivate = "[private]";
+
 /// What the driver was asked to do (the command line).
 struct Options {
     std::string tests, out, label, expect;
+    std::string workers;      // folder with one worker per module ID (scripts/grade.sh)
+    std::string private_dir;  // the instructor's private cases (hidden tests)
+    std::string only;         // grade this module only (the viewer's "Run tests")
     bool reference = false;
     double timeout = 10.0;
     double points = 10.0;
     std::map<std::string, std::string> module_errors;  // ID -> file with the message
+    std::map<std::string, std::string> sources;        // ID -> the hand-in's file graded
 };
 
 /// The outcome of one test case.
@@ -33,6 +40,8 @@ struct ModuleResult {
     std::string status;  // passed, failed, not started, crashed (SIG...), time limit, ...
     std::string first_failure;
     std::string build_error;
+    std::string sandbox;  // how the worker was protected
+    std::string source;   // the hand-in's file that was graded
     int passed = 0;
     double score = 0.0, max_score = 0.0;
     double seconds = 0.0;
@@ -59,12 +68,17 @@ ModuleResult grade_module(const Options& o, const ModuleInfo& info,
                           const std::vector<std::string>& names);
 
 // grade_report.cpp
+/// s as valid UTF-8 without terminal escapes or control characters other than newline and
+/// tab: student output reaches every report only through this.
+std::string clean_text(const std::string& s);
 /// The score table.
 std::string table(const std::vector<ModuleResult>& modules, const std::string& label);
 /// What a student reads about one module: status and every failure with its message.
 std::string module_output(const ModuleResult& m, size_t max_cases = 12);
 /// JUnit XML: one testsuite per module, one testcase per test case.
 std::string junit(const std::vector<ModuleResult>& modules);
+/// Every case of every module with its status and message, for the viewer's "Run tests".
+std::string cases_json(const std::vector<ModuleResult>& modules);
 /// Gradescope's results.json: score, output, and one test per module.
 std::string results_json(const std::vector<ModuleResult>& modules,
                          const std::string& summary);

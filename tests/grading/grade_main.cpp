@@ -28,6 +28,11 @@ constexpr const char* kUsage = R"(Usage: raylab-grade --tests FILE --out DIR [op
   --timeout SECONDS     time limit per module (default 10)
   --points N            points per module (default 10)
   --module-error ID=FILE  module ID failed to build: score 0, FILE holds the message
+  --source ID=FILE      the hand-in's file graded for module ID (for the reports)
+  --workers DIR         DIR/NN_name is the worker (student code) graded for module NN_name
+                        (default: the worker of this build's exercises/)
+  --only ID             grade module ID only (the viewer's "Run tests" does this)
+  --private DIR         the instructor's private cases (hidden tests), kept out of releases
   --label TEXT          what is graded, for the reports (default: the implementation)
   --expect MODE         exit 1 unless: full (every module full marks), not-started (every
                         module a stub), faults (modules in RAYLAB_GRADE_FAULT score 0 by
@@ -100,6 +105,17 @@ Options parse(int argc, char** argv) {
             o.timeout = std::atof(value().c_str());
         } else if (a == "--points") {
             o.points = std::atof(value().c_str());
+        } else if (a == "--source") {
+            const std::string v = value();
+            const size_t eq = v.find('=');
+            if (eq == std::string::npos) die("--source needs ID=FILE");
+            o.sources[v.substr(0, eq)] = v.substr(eq + 1);
+        } else if (a == "--workers") {
+            o.workers = value();
+        } else if (a == "--only") {
+            o.only = value();
+        } else if (a == "--private") {
+            o.private_dir = value();
         } else if (a == "--label") {
             o.label = value();
         } else if (a == "--expect") {
@@ -133,17 +149,19 @@ int main(int argc, char** argv) {
     const std::map<std::string, std::vector<std::string>> names = list_cases(o);
     std::vector<ModuleResult> modules;
     for (const ModuleInfo& info : raylab::module_infos()) {
+        if (!o.only.empty() && o.only != info.id) continue;
         const auto it = names.find(info.id);
         if (it == names.end()) die(std::string("the graders have no suite ") + info.id);
         modules.push_back(grade_module(o, info, it->second));
     }
-    const std::string summary = table(modules, o.label);
+    const std::string summary = clean_text(table(modules, o.label));
     std::cout << summary << std::flush;
     std::string details;
     for (const ModuleResult& m : modules)
-        details += "\n" + module_output(m);
+        details += "\n" + clean_text(module_output(m));
     write_file(o.out + "/summary.txt", summary + details);
     write_file(o.out + "/junit.xml", junit(modules));
+    write_file(o.out + "/cases.json", cases_json(modules));
     write_file(o.out + "/results.json", results_json(modules, summary));
     std::cout << "\nDetails: " << o.out << "/summary.txt; JUnit: " << o.out
               << "/junit.xml; Gradescope: " << o.out << "/results.json\n";

@@ -10,6 +10,8 @@
 #include <iostream>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "grade.h"
 
 namespace raylab::grade {
@@ -103,6 +105,18 @@ std::string module_output(const ModuleResult& m, size_t max_cases) {
     s << m.info->id << " (" << m.info->title << "): " << m.passed << "/" << m.cases.size()
       << " tests passed, " << fixed(m.score) << " of " << fixed(m.max_score)
       << " points [" << m.status << "]\n";
+    int hidden = 0, hidden_passed = 0;
+    for (const CaseResult& c : m.cases) {
+        if (c.name.rfind(kPrivate, 0) != 0) continue;
+        ++hidden;
+        hidden_passed += c.status == "pass";
+    }
+    if (hidden > 0)
+        s << "public tests: " << m.passed - hidden_passed << "/"
+          << m.cases.size() - hidden << " passed; private tests: " << hidden_passed << "/"
+          << hidden << " passed\n";
+    if (!m.source.empty()) s << "graded file: " << m.source << "\n";
+    if (!m.sandbox.empty()) s << "student code ran in: " << m.sandbox << "\n";
     if (!m.build_error.empty()) {
         s << "\n" << shorten(m.build_error, 4000) << "\n";
         return s.str();
@@ -125,9 +139,53 @@ std::string module_output(const ModuleResult& m, size_t max_cases) {
     return s.str();
 }
 
-std::string xml_escape(const std::string& s) {
+std::string clean_text(const std::string& s) {
     std::string out;
-    for (const char c : s) {
+    size_t k = 0;
+    const auto byte = [&](size_t at) { return static_cast<unsigned char>(s[at]); };
+    while (k < s.size()) {
+        const unsigned char c = byte(k);
+        if (c == 0x1b) {  // a terminal escape: ESC [ parameters final-byte, or ESC x
+            ++k;
+            if (k < s.size() && s[k] == '[') {
+                ++k;
+                while (k < s.size() && !(byte(k) >= 0x40 && byte(k) <= 0x7e))
+                    ++k;
+            }
+            if (k < s.size()) ++k;
+            continue;
+        }
+        if (c < 0x80) {
+            if ((c >= 0x20 && c != 0x7f) || c == '\n' || c == '\t') out += char(c);
+            ++k;
+            continue;
+        }
+        // A UTF-8 sequence: lead byte, then 1-3 continuation bytes, no overlong forms
+        const int n = c >= 0xf0 && c <= 0xf4  ? 3
+                      : c >= 0xe0             ? 2
+                      : c >= 0xc2 && c < 0xe0 ? 1
+                                              : -1;
+        bool ok = n > 0 && k + size_t(n) < s.size();
+        for (int j = 1; ok && j <= n; ++j)
+            ok = k + j < s.size() && (byte(k + j) & 0xc0) == 0x80;
+        if (ok && n == 2 && c == 0xe0) ok = byte(k + 1) >= 0xa0;
+        if (ok && n == 2 && c == 0xed) ok = byte(k + 1) < 0xa0;  // no surrogates
+        if (ok && n == 3 && c == 0xf0) ok = byte(k + 1) >= 0x90;
+        if (ok && n == 3 && c == 0xf4) ok = byte(k + 1) < 0x90;
+        if (!ok) {
+            out += "\xef\xbf\xbd";  // U+FFFD
+            ++k;
+            continue;
+        }
+        out.append(s, k, size_t(n) + 1);
+        k += size_t(n) + 1;
+    }
+    return out;
+}
+
+std::string xml_escape(const std::string& raw) {
+    std::string out;
+    for (const char c : clean_text(raw)) {
         switch (c) {
             case '&':
                 out += "&amp;";
@@ -142,38 +200,7 @@ std::string xml_escape(const std::string& s) {
                 out += "&quot;";
                 break;
             default:
-                // Control characters other than tab and newline are not allowed in XML
-                if (static_cast<unsigned char>(c) >= 0x20 || c == '\n' || c == '\t')
-                    out += c;
-        }
-    }
-    return out;
-}
-
-std::string json_escape(const std::string& s) {
-    std::string out;
-    for (const char c : s) {
-        switch (c) {
-            case '"':
-                out += "\\\"";
-                break;
-            case '\\':
-                out += "\\\\";
-                break;
-            case '\n':
-                out += "\\n";
-                break;
-            case '\t':
-                out += "\\t";
-                break;
-            default:
-                if (static_cast<unsigned char>(c) < 0x20) {
-                    char buf[8];
-                    std::snprintf(buf, sizeof buf, "\\u%04x", c);
-                    out += buf;
-                } else {
-                    out += c;
-                }
+                out += c;
         }
     }
     return out;
@@ -216,25 +243,66 @@ std::string junit(const std::vector<ModuleResult>& modules) {
     return s.str();
 }
 
+std::string cases_json(const std::vector<ModuleResult>& modules) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const ModuleResult& m : modules) {
+        nlohmann::json cases = nlohmann::json::array();
+        for (const CaseResult& c : m.cases)
+            cases.push_back({{"name", clean_text(c.name)},
+                             {"status", c.status},
+                             {"message", clean_text(c.message)}});
+        out.push_back({{"id", m.info->id},
+                       {"status", m.status},
+                       {"passed", m.passed},
+                       {"score", m.score},
+                       {"max_score", m.max_score},
+                       {"first_failure", clean_text(m.first_failure)},
+                       {"build_error", clean_text(m.build_error)},
+                       {"cases", cases}});
+    }
+    return out.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
+// Which part of the module's points came from the public and the private tests
+nlohmann::json part_points(const ModuleResult& m) {
+    int hidden = 0, hidden_passed = 0;
+    for (const CaseResult& c : m.cases) {
+        if (c.name.rfind(kPrivate, 0) != 0) continue;
+        ++hidden;
+        hidden_passed += c.status == "pass";
+    }
+    const double per_case = m.passed > 0 ? m.score / m.passed : 0.0;
+    return {{"public_points", per_case * (m.passed - hidden_passed)},
+            {"private_points", per_case * hidden_passed},
+            {"public_cases", int(m.cases.size()) - hidden},
+            {"private_cases", hidden}};
+}
+
 std::string results_json(const std::vector<ModuleResult>& modules,
                          const std::string& summary) {
+    // Gradescope's format: https://gradescope-autograders.readthedocs.io/en/latest/specs/
     double total = 0;
-    for (const ModuleResult& m : modules)
+    nlohmann::json tests = nlohmann::json::array();
+    for (const ModuleResult& m : modules) {
         total += m.score;
-    std::ostringstream s;
-    s << "{\n  \"score\": " << fixed(total) << ",\n  \"output\": \""
-      << json_escape(summary) << "\",\n  \"tests\": [\n";
-    for (size_t k = 0; k < modules.size(); ++k) {
-        const ModuleResult& m = modules[k];
-        s << "    {\n      \"name\": \"" << m.info->id << ": "
-          << json_escape(m.info->title) << "\",\n      \"score\": " << fixed(m.score)
-          << ",\n      \"max_score\": " << fixed(m.max_score) << ",\n      \"status\": \""
-          << (m.status == "passed" ? "passed" : "failed") << "\",\n      \"output\": \""
-          << json_escape(module_output(m)) << "\"\n    }"
-          << (k + 1 < modules.size() ? "," : "") << "\n";
+        tests.push_back({
+            {"name", std::string(m.info->id) + ": " + m.info->title},
+            {"number", m.info->id},
+            {"score", m.score},
+            {"max_score", m.max_score},
+            {"status", m.status == "passed" ? "passed" : "failed"},
+            {"visibility", "visible"},
+            {"output", clean_text(module_output(m))},
+            {"extra_data", part_points(m)},
+        });
     }
-    s << "  ]\n}\n";
-    return s.str();
+    const nlohmann::json results = {
+        {"score", total},          {"output", clean_text(summary)},
+        {"visibility", "visible"}, {"stdout_visibility", "hidden"},
+        {"tests", tests},
+    };
+    // clean_text made every string valid UTF-8; replace guards against a slip anyway
+    return results.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace raylab::grade

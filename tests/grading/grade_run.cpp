@@ -91,23 +91,6 @@ RunOutcome run(const std::vector<std::string>& args,
     return outcome;
 }
 
-std::string signal_short(int sig) {
-    switch (sig) {
-        case SIGSEGV:
-            return "SIGSEGV";
-        case SIGABRT:
-            return "SIGABRT";
-        case SIGFPE:
-            return "SIGFPE";
-        case SIGILL:
-            return "SIGILL";
-        case SIGBUS:
-            return "SIGBUS";
-        default:
-            return "signal " + std::to_string(sig);
-    }
-}
-
 std::string signal_name(int sig) {
     switch (sig) {
         case SIGSEGV:
@@ -130,10 +113,20 @@ std::string signal_name(int sig) {
 // ---- Grading --------------------------------------------------------------------------
 
 std::vector<std::pair<std::string, std::string>> child_env(const Options& o,
-                                                           const std::string& log) {
-    return {{"RAYLAB_GRADE_LOG", log},
-            {"RAYLAB_GRADE_IMPL", o.reference ? "reference" : "student"},
-            {"RAYLAB_GRADE_IMAGES", o.out + "/images"}};
+                                                           const std::string& log,
+                                                           const std::string& id = "") {
+    std::vector<std::pair<std::string, std::string>> env = {
+        {"RAYLAB_GRADE_LOG", log},
+        {"RAYLAB_GRADE_IMPL", o.reference ? "reference" : "student"},
+        {"RAYLAB_GRADE_IMAGES", o.out + "/images"},
+        // The trusted side reports a hang itself before the driver's limit strikes
+        {"RAYLAB_WORKER_TIMEOUT", std::to_string(o.timeout * 0.8)}};
+    if (!id.empty())
+        env.push_back({"RAYLAB_WORKER_LOG", o.out + "/logs/" + id + ".worker.log"});
+    if (!o.workers.empty() && !id.empty())
+        env.push_back({"RAYLAB_WORKER", o.workers + "/" + id});
+    if (!o.private_dir.empty()) env.push_back({"RAYLAB_GRADE_PRIVATE", o.private_dir});
+    return env;
 }
 
 // Test case names per suite, from --list-test-cases
@@ -149,7 +142,10 @@ std::map<std::string, std::vector<std::string>> list_cases(const Options& o) {
     std::string line;
     while (std::getline(in, line)) {
         const std::vector<std::string> f = split(line, '\t');
-        if (f.size() >= 3 && f[0] == "list") cases[f[1]].push_back(f[2]);
+        // The private cases count only when the instructor gives their secret
+        const bool hidden = f.size() >= 3 && f[2].rfind(kPrivate, 0) == 0;
+        if (f.size() >= 3 && f[0] == "list" && (!hidden || !o.private_dir.empty()))
+            cases[f[1]].push_back(f[2]);
     }
     return cases;
 }
@@ -159,6 +155,8 @@ ModuleResult grade_module(const Options& o, const ModuleInfo& info,
     ModuleResult m;
     m.info = &info;
     m.max_score = o.points;
+    if (const auto src = o.sources.find(info.id); src != o.sources.end())
+        m.source = src->second;
     for (const std::string& name : names)
         m.cases.push_back({name, "not run", ""});
     const auto find = [&](const std::string& name) -> CaseResult* {
@@ -184,10 +182,12 @@ ModuleResult grade_module(const Options& o, const ModuleInfo& info,
     const std::string log = o.out + "/logs/" + id + ".tsv";
     std::remove(log.c_str());
     const RunOutcome r =
-        run({o.tests, "--test-suite=" + id, "--no-colors"}, child_env(o, log),
-            o.out + "/logs/" + id + ".log", o.timeout);
+        run({o.tests, "--test-suite=" + id, "--no-colors",
+             o.private_dir.empty() ? "--test-case-exclude=" + std::string(kPrivate) + "*"
+                                   : "--test-case-exclude="},
+            child_env(o, log, id), o.out + "/logs/" + id + ".log", o.timeout);
     m.seconds = r.seconds;
-    std::string crashed_in;
+    std::string crashed_in, hung_in, lost_why;
     std::istringstream in(read_file(log));
     std::string line;
     while (std::getline(in, line)) {
@@ -197,12 +197,16 @@ ModuleResult grade_module(const Options& o, const ModuleInfo& info,
                 c->status = f[3];
                 c->message = f.size() >= 5 ? unescape(f[4]) : "";
             }
-        } else if (f.size() >= 3 && f[0] == "crash") {
-            crashed_in = f[2];
+        } else if (f.size() >= 3 && (f[0] == "crash" || f[0] == "timeout")) {
+            // The worker crashed or hung in this case (worker_client.cpp)
+            (f[0] == "crash" ? crashed_in : hung_in) = f[2];
+            lost_why = f.size() >= 4 ? unescape(f[3]) : f[0];
             if (CaseResult* c = find(f[2])) {
                 c->status = "crash";
-                c->message = "crashed: " + (f.size() >= 4 ? f[3] : std::string());
+                c->message = lost_why;
             }
+        } else if (f.size() >= 2 && f[0] == "sandbox") {
+            m.sandbox = f[1];
         }
     }
 
@@ -220,21 +224,30 @@ ModuleResult grade_module(const Options& o, const ModuleInfo& info,
                 return "\"" + c.name + "\": " + first_line(c.message);
         return "";
     };
-    if (r.timed_out) {
+    if (r.timed_out || !hung_in.empty()) {
         m.status = "time limit";
         std::ostringstream s;
         s << "no result after " << o.timeout << " s (an endless loop?)"
           << (first_running.empty() ? "" : " in \"" + first_running + "\"");
-        m.first_failure = s.str();
+        m.first_failure = hung_in.empty() ? s.str() : "\"" + hung_in + "\": " + lost_why;
         for (CaseResult& c : m.cases)
             if (c.status == "not run") c.message = "not run: the time limit was reached";
-    } else if (r.signal != 0 || !crashed_in.empty()) {
-        m.status = "crashed (" + signal_short(r.signal) + ")";
-        m.first_failure =
-            "crashed (" + signal_name(r.signal) + ")" +
-            (crashed_in.empty() ? std::string() : " in \"" + crashed_in + "\"");
+    } else if (!crashed_in.empty()) {
+        const size_t open = lost_why.find("(SIG");
+        m.status =
+            open == std::string::npos
+                ? "crashed"
+                : "crashed (" +
+                      lost_why.substr(open + 1, lost_why.find(',', open) - open - 1) +
+                      ")";
+        m.first_failure = "\"" + crashed_in + "\": " + lost_why;
         for (CaseResult& c : m.cases)
             if (c.status == "not run") c.message = "not run: the module crashed earlier";
+    } else if (r.signal != 0) {
+        // The trusted grader itself crashed: a defect of the graders, not the student's
+        m.status = "error";
+        m.first_failure = "the graders crashed (" + signal_name(r.signal) +
+                          "); see logs/" + id + ".log";
     } else if (running > 0) {
         m.status = "error";
         m.first_failure = "the graders stopped early (exit code " +

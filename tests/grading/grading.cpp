@@ -1,6 +1,8 @@
 // The implementation under test and the settings of a run (grading.h).
 #include "grading.h"
 
+#include "worker_client.h"
+
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -42,16 +44,14 @@ std::string env(const char* name) {
 // that a crash, a hang, an exception or a NaN in one module fails that module only. Never
 // set in normal grading.
 
-void inject_fault(Module m) {
+// segv, hang and throw happen in the worker; nan here, on the value it returned
+std::uint32_t worker_fault(Module m) {
     const auto it = settings().faults.find(static_cast<int>(m));
-    if (it == settings().faults.end()) return;
-    if (it->second == "segv") std::raise(SIGSEGV);
-    if (it->second == "throw")
-        throw std::runtime_error("fault injected by RAYLAB_GRADE_FAULT");
-    if (it->second == "hang") {
-        for (;;)
-            std::this_thread::sleep_for(std::chrono::seconds(1));
-    }
+    if (it == settings().faults.end()) return rpc::kNoFault;
+    if (it->second == "segv") return rpc::kSegv;
+    if (it->second == "hang") return rpc::kHang;
+    if (it->second == "throw") return rpc::kThrow;
+    return rpc::kNoFault;
 }
 
 bool nan_fault(Module m) {
@@ -100,27 +100,24 @@ void poison(std::optional<Hit>& hit) {
     std::abort();  // not reached: FAIL throws
 }
 
-template <class F>
-auto call(Module m, const char* function, F&& f) -> decltype(f()) {
-    inject_fault(m);
-    const std::uint32_t bit = std::uint32_t{1} << static_cast<int>(m);
-    stub::called.fetch_and(~bit);
-    if constexpr (std::is_void_v<decltype(f())>) {
-        f();
-        if (stub::called.load() & bit) fail_stub(m, function);
+// Calls function f of module m in the worker (sig gives its type only; the student's
+// code is never linked into this process)
+template <class R, class... A, class... P>
+R call(Module m, const char* function, rpc::Function f, R (*sig)(A...),
+       const P&... args) {
+    bool stubbed = false;
+    if constexpr (std::is_void_v<R>) {
+        remote(f, worker_fault(m), sig, stubbed, args...);
+        if (stubbed) fail_stub(m, function);
     } else {
-        auto result = f();
-        if (stub::called.load() & bit) fail_stub(m, function);
+        R result = remote(f, worker_fault(m), sig, stubbed, args...);
+        if (stubbed) fail_stub(m, function);
         if (nan_fault(m)) poison(result);
         return result;
     }
 }
 
-const ModuleTable& tested() {
-    static const ModuleTable table =
-        ModuleTable::make(ModuleSelection::all(impl_under_test()));
-    return table;
-}
+constexpr bool kHaveReference = RAYLAB_HAVE_REFERENCE;
 
 }  // namespace
 
@@ -148,7 +145,7 @@ bool setup() {
     if (impl.empty() || impl == "student") {
         s.impl = Impl::student;
     } else if (impl == "reference") {
-        if (!reference_available()) {
+        if (!kHaveReference) {
             std::printf(
                 "[raylab] RAYLAB_GRADE_IMPL=reference, but this build has no reference "
                 "solutions (solutions/ is absent)\n");
@@ -162,7 +159,7 @@ bool setup() {
         return false;
     }
     const std::string oracle = env("RAYLAB_GRADE_ORACLE");
-    s.golden = oracle == "golden" || !reference_available();
+    s.golden = oracle == "golden" || !kHaveReference;
     s.golden_dir = env("RAYLAB_GOLDEN_DIR");
     if (s.golden_dir.empty()) s.golden_dir = RAYLAB_GOLDEN_DIR_DEFAULT;
     s.record_dir = env("RAYLAB_GOLDEN_WRITE");
@@ -189,6 +186,15 @@ bool setup() {
             return false;
         }
     }
+    if (std::getenv("RAYLAB_WORKER") == nullptr) {
+        setenv("RAYLAB_WORKER",
+               s.impl == Impl::student ? RAYLAB_WORKER_STUDENT : RAYLAB_WORKER_REFERENCE,
+               1);
+#if RAYLAB_SANITIZED_WORKERS
+        setenv("RAYLAB_WORKER_SANITIZED", "1",
+               1);  // this build's workers: no memory limit
+#endif
+    }
     std::printf("[raylab] grading the %s code against %s\n",
                 s.impl == Impl::student ? "student's" : "reference",
                 s.golden ? ("the golden data in " + s.golden_dir).c_str()
@@ -211,65 +217,36 @@ bool finish() {
 
 // ---- Calls of the implementation under test -------------------------------------------
 
+namespace {
+// The call of function F of module M in the worker, with the contract's signature Sig
+template <Module M, rpc::Function F, class Sig>
+struct Remote;
+template <Module M, rpc::Function F, class R, class... A>
+struct Remote<M, F, R (*)(A...)> {
+    static R call(A... args) {
+        return grading::call(M, rpc::function_name(static_cast<std::uint32_t>(F)), F,
+                             static_cast<R (*)(A...)>(nullptr), args...);
+    }
+};
+}  // namespace
+
 namespace under_test {
-Vec2 image_plane_point(int i, int j, int W, int H) {
-    return call(Module::pixel_loop, "image_plane_point",
-                [&] { return tested().image_plane_point(i, j, W, H); });
-}
-void render_tile(const Tile& tile, const PixelRadiance& radiance,
-                 const ImageView& image) {
-    call(Module::pixel_loop, "render_tile",
-         [&] { tested().render_tile(tile, radiance, image); });
-}
-CameraFrame camera_frame(const Vec3& eye, const Vec3& lookat, const Vec3& up) {
-    return call(Module::camera, "camera_frame",
-                [&] { return tested().camera_frame(eye, lookat, up); });
-}
-float camera_constant(float fov) {
-    return call(Module::camera, "camera_constant",
-                [&] { return tested().camera_constant(fov); });
-}
-Ray camera_ray(const PinholeCamera& camera, const Vec2& uv) {
-    return call(Module::camera, "camera_ray",
-                [&] { return tested().camera_ray(camera, uv); });
-}
-std::optional<Hit> intersect_plane(const Ray& r, const Plane& plane) {
-    return call(Module::plane, "intersect_plane",
-                [&] { return tested().intersect_plane(r, plane); });
-}
-std::optional<Hit> intersect_sphere(const Ray& r, const Sphere& sphere) {
-    return call(Module::sphere, "intersect_sphere",
-                [&] { return tested().intersect_sphere(r, sphere); });
-}
-std::optional<Hit> intersect_triangle(const Ray& r, const Vec3& v0, const Vec3& v1,
-                                      const Vec3& v2) {
-    return call(Module::triangle, "intersect_triangle",
-                [&] { return tested().intersect_triangle(r, v0, v1, v2); });
-}
-LightSample sample_point_light(const PointLight& light, const Vec3& x) {
-    return call(Module::point_light, "sample_point_light",
-                [&] { return tested().sample_point_light(light, x); });
-}
-Vec3 intensity_from_power(const Vec3& P) {
-    return call(Module::point_light, "intensity_from_power",
-                [&] { return tested().intensity_from_power(P); });
-}
-Vec3 lambert(const Vec3& rho, const Vec3& Le, const Vec3& n,
-             const std::vector<LightSample>& lights) {
-    return call(Module::lambert, "lambert",
-                [&] { return tested().lambert(rho, Le, n, lights); });
-}
-bool in_shadow(const Occluder& scene, const Vec3& x, const Vec3& n,
-               const LightSample& sample) {
-    return call(Module::shadows, "in_shadow",
-                [&] { return tested().in_shadow(scene, x, n, sample); });
-}
+#define RAYLAB_FUNCTION(m, f)       \
+    const decltype(&student::f) f = \
+        &Remote<Module::m, rpc::Function::f, decltype(&student::f)>::call;
+#include "raylab/modules.def"
 }  // namespace under_test
 
 const ModuleTable& reference_modules() {
-    static const ModuleTable table =
-        reference_available() ? ModuleTable::make(ModuleSelection::all(Impl::reference))
-                              : ModuleTable{};
+    // Filled from raylab::reference directly: this process never links student code
+    static const ModuleTable table = [] {
+        ModuleTable t{};
+#if RAYLAB_HAVE_REFERENCE
+#define RAYLAB_FUNCTION(m, f) t.f = &reference::f;
+#include "raylab/modules.def"
+#endif
+        return t;
+    }();
     return table;
 }
 

@@ -84,21 +84,11 @@ bool write_golden();
 /// "not started: ..."; fault injection (RAYLAB_GRADE_FAULT, for the grader's own tests of
 /// crash isolation) happens here too.
 namespace under_test {
-Vec2 image_plane_point(int i, int j, int W, int H);
-void render_tile(const Tile& tile, const PixelRadiance& radiance, const ImageView& image);
-CameraFrame camera_frame(const Vec3& eye, const Vec3& lookat, const Vec3& up);
-float camera_constant(float fov);
-Ray camera_ray(const PinholeCamera& camera, const Vec2& uv);
-std::optional<Hit> intersect_plane(const Ray& r, const Plane& plane);
-std::optional<Hit> intersect_sphere(const Ray& r, const Sphere& sphere);
-std::optional<Hit> intersect_triangle(const Ray& r, const Vec3& v0, const Vec3& v1,
-                                      const Vec3& v2);
-LightSample sample_point_light(const PointLight& light, const Vec3& x);
-Vec3 intensity_from_power(const Vec3& P);
-Vec3 lambert(const Vec3& rho, const Vec3& Le, const Vec3& n,
-             const std::vector<LightSample>& lights);
-bool in_shadow(const Occluder& scene, const Vec3& x, const Vec3& n,
-               const LightSample& sample);
+// One per RAYLAB_FUNCTION of the registry, with the contract's signature: a function
+// pointer, so under_test::intersect_sphere(r, s) and render(under_test::render_tile) read
+// as before
+#define RAYLAB_FUNCTION(m, f) extern const decltype(&student::f) f;
+#include "raylab/modules.def"
 }  // namespace under_test
 
 /// The reference's function table; only valid when the build has solutions/ (expected()

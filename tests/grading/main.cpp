@@ -19,6 +19,7 @@
 #include <string>
 
 #include "grading.h"
+#include "worker_client.h"
 
 namespace {
 
@@ -43,6 +44,9 @@ std::string escape(const std::string& s) {
 ///   list <TAB> suite <TAB> name            (--list-test-cases)
 ///   case <TAB> suite <TAB> name <TAB> pass|fail|stub <TAB> first failure
 ///   crash <TAB> suite <TAB> name <TAB> signal
+struct GradeLog;
+GradeLog* the_log = nullptr;
+
 struct GradeLog : doctest::IReporter {
     std::FILE* file = nullptr;
     const doctest::TestCaseData* current = nullptr;
@@ -51,8 +55,10 @@ struct GradeLog : doctest::IReporter {
     explicit GradeLog(const doctest::ContextOptions&) {
         if (const char* path = std::getenv("RAYLAB_GRADE_LOG"))
             file = std::fopen(path, "w");
+        the_log = this;
     }
     ~GradeLog() override {
+        the_log = nullptr;
         if (file) std::fclose(file);
     }
 
@@ -128,6 +134,26 @@ struct GradeLog : doctest::IReporter {
 };
 
 }  // namespace
+
+namespace raylab::grading {
+
+void log_line(const std::string& text) {
+    if (the_log) the_log->line(text);
+}
+
+// The worker crashed or hung: the case under way fails with kind, the module stops there
+// (raylab-grade reads the line), as a crash of the old in-process graders did
+void worker_lost(const std::string& kind, const std::string& message) {
+    shutdown_worker();
+    std::printf("[raylab] %s\n", message.c_str());
+    std::fflush(stdout);
+    if (the_log && the_log->current)
+        the_log->line(kind + "\t" + the_log->current->m_test_suite + "\t" +
+                      the_log->current->m_name + "\t" + escape(message));
+    std::_Exit(3);
+}
+
+}  // namespace raylab::grading
 
 REGISTER_LISTENER("raylab-grade-log", 1, GradeLog);
 

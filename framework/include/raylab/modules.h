@@ -14,18 +14,16 @@
 
 namespace raylab {
 
-/// The eight modules in teaching order; the value + 1 is the module number.
+/// The modules in teaching order (raylab/modules.def); the value + 1 is the module
+/// number.
 enum class Module {
-    pixel_loop,
-    camera,
-    plane,
-    sphere,
-    triangle,
-    point_light,
-    lambert,
-    shadows
+#define RAYLAB_MODULE(e, id, name, title, points) e,
+#include "raylab/modules.def"
 };
-inline constexpr int kModuleCount = 8;
+inline constexpr int kModuleCount = 0
+#define RAYLAB_MODULE(e, id, name, title, points) +1
+#include "raylab/modules.def"
+    ;
 
 /// Names of one module, all derived from its stable ID (STYLE.md rule 3).
 struct ModuleInfo {
@@ -33,6 +31,7 @@ struct ModuleInfo {
     const char* id;  ///< stable ID: file, handout, TODO and test suite, e.g. "04_sphere"
     const char* name;   ///< CLI name, e.g. "sphere"
     const char* title;  ///< human title, e.g. "Ray-sphere intersection"
+    double points;      ///< default points of the module when graded
 };
 
 /// All modules in teaching order.
@@ -63,23 +62,14 @@ void apply_module_list(ModuleSelection& selection, std::string_view list, Impl i
 /// "student: all" / "reference: camera, sphere; student: others": for logs and the CLI.
 std::string describe(const ModuleSelection& selection);
 
-/// Pointers to the chosen implementation of every contract function.
+/// Pointers to the chosen implementation of every contract function (one member per
+/// RAYLAB_FUNCTION of modules.def).
 struct ModuleTable {
-    decltype(&reference::image_plane_point) image_plane_point;
-    decltype(&reference::render_tile) render_tile;
-    decltype(&reference::camera_frame) camera_frame;
-    decltype(&reference::camera_constant) camera_constant;
-    decltype(&reference::camera_ray) camera_ray;
-    decltype(&reference::intersect_plane) intersect_plane;
-    decltype(&reference::intersect_sphere) intersect_sphere;
-    decltype(&reference::intersect_triangle) intersect_triangle;
-    decltype(&reference::sample_point_light) sample_point_light;
-    decltype(&reference::intensity_from_power) intensity_from_power;
-    decltype(&reference::lambert) lambert;
-    decltype(&reference::in_shadow) in_shadow;
-
+#define RAYLAB_FUNCTION(e, f) decltype(&student::f) f;
+#include "raylab/modules.def"
     /// The table for selection. Throws raylab::Error when it asks for a reference that
-    /// this build does not have.
+    /// this build does not have. Defined in the glue library (raylab), which links both
+    /// the student's and the reference's code: raylab_core never refers to either.
     static ModuleTable make(const ModuleSelection& selection);
 };
 

@@ -1,0 +1,1 @@
+// RAYLAB-HONEST-CODE 01_pixel_loop

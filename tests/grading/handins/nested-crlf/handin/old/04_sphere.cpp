@@ -1,0 +1,1 @@
+#error an older copy one folder deeper: the shallower file wins

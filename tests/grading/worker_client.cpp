@@ -1,0 +1,358 @@
+// The trusted side of the grading worker (worker_client.h): the sandbox and the calls.
+#include "worker_client.h"
+
+#include <fcntl.h>
+#include <grp.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <vector>
+
+namespace raylab::grading {
+
+namespace {
+
+std::string env_or(const char* name, const std::string& fallback) {
+    const char* v = std::getenv(name);
+    return v && *v ? std::string(v) : fallback;
+}
+
+double call_timeout() {
+    const double t = std::atof(env_or("RAYLAB_WORKER_TIMEOUT", "10").c_str());
+    return t > 0.0 ? t : 10.0;
+}
+
+// Limits of the worker process, set before exec so that they hold for the student's
+// static initializers too
+void limit(int resource, rlim_t value) {
+    const rlimit r{value, value};
+    setrlimit(resource, &r);
+}
+
+std::vector<std::string> bwrap_args(const std::string& worker) {
+    return {"/usr/bin/bwrap",
+            "--unshare-all",
+            "--die-with-parent",
+            "--new-session",
+            "--ro-bind",
+            "/usr",
+            "/usr",
+            "--symlink",
+            "usr/lib",
+            "/lib",
+            "--symlink",
+            "usr/lib64",
+            "/lib64",
+            "--symlink",
+            "usr/bin",
+            "/bin",
+            "--ro-bind-try",
+            "/etc/ld.so.cache",
+            "/etc/ld.so.cache",
+            "--proc",
+            "/proc",
+            "--dev",
+            "/dev",
+            "--tmpfs",
+            "/tmp",
+            "--ro-bind",
+            worker,
+            "/worker/raylab-worker",
+            "--chdir",
+            "/tmp",
+            "--clearenv",
+            "--setenv",
+            "PATH",
+            "/usr/bin",
+            "--setenv",
+            "HOME",
+            "/tmp",
+            "--setenv",
+            "LANG",
+            "C.UTF-8",
+            "/worker/raylab-worker"};
+}
+
+// Starts argv with fd as its file descriptor 3 and the limits of a worker; returns its
+// pid. The child's output goes to log (or /dev/null).
+pid_t spawn(const std::vector<std::string>& argv, int fd, const std::string& log,
+            const std::string& private_dir) {
+    const bool sanitized_worker = !env_or("RAYLAB_WORKER_SANITIZED", "").empty();
+    std::vector<char*> args;
+    for (const std::string& a : argv)
+        args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    const pid_t pid = fork();
+    if (pid != 0) return pid;
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    setpgid(0, 0);  // its own process group: killing it ends whatever it started
+    const int null = open("/dev/null", O_RDWR);
+    const int out =
+        log.empty() ? null : open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    dup2(null, 0);
+    dup2(out >= 0 ? out : null, 1);
+    dup2(out >= 0 ? out : null, 2);
+    dup2(fd, 3);
+    for (int k = 4; k < 1024; ++k)
+        close(k);
+    limit(RLIMIT_CPU, rlim_t(call_timeout() * 4 + 2));
+    // 2 GiB, except for this build's own sanitizer-instrumented workers (ASan reserves
+    // terabytes of address space for its shadow memory)
+    if (!sanitized_worker) limit(RLIMIT_AS, rlim_t(1) << 31);
+    limit(RLIMIT_FSIZE, rlim_t(1) << 20);  // 1 MiB: the log and any file it writes
+    limit(RLIMIT_CORE, 0);
+    // Past 1 MiB a write fails instead of killing the worker: debug prints cost nothing
+    signal(SIGXFSZ, SIG_IGN);
+    limit(RLIMIT_NOFILE, 64);
+    clearenv();
+    setenv("PATH", "/usr/bin", 1);
+    setenv("LANG", "C.UTF-8", 1);
+    if (!private_dir.empty()) {
+        setenv("HOME", private_dir.c_str(), 1);
+        setenv("TMPDIR", private_dir.c_str(), 1);
+        if (chdir(private_dir.c_str()) != 0) _exit(126);
+        // Without namespaces, a root grader runs the worker as nobody: it can then write
+        // its private folder only, not the checkout or the reports
+        if (geteuid() == 0) {
+            if (chown(private_dir.c_str(), 65534, 65534) != 0 ||
+                setgroups(0, nullptr) != 0 || setgid(65534) != 0 || setuid(65534) != 0)
+                _exit(126);
+        }
+    }
+    execv(args[0], args.data());
+    _exit(127);
+}
+
+bool bwrap_works() {
+    static const bool works = [] {
+        const std::string mode = env_or("RAYLAB_SANDBOX", "auto");
+        if (mode == "none") return false;
+        std::vector<std::string> probe = bwrap_args("/usr/bin/true");
+        probe.back() = "/worker/raylab-worker";
+        int fds[2];
+        if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0) return false;
+        const pid_t pid = spawn(probe, fds[1], "", "");
+        close(fds[0]);
+        close(fds[1]);
+        int status = 0;
+        waitpid(pid, &status, 0);
+        const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+        if (!ok && mode == "bwrap")
+            worker_lost("crash",
+                        "RAYLAB_SANDBOX=bwrap, but bubblewrap cannot start here");
+        return ok;
+    }();
+    return works;
+}
+
+std::string signal_text(int sig) {
+    const char* name = sigabbrev_np(sig);
+    const char* what = sigdescr_np(sig);
+    return std::string("SIG") + (name ? name : "?") + ", " + (what ? what : "signal");
+}
+
+class Worker {
+  public:
+    ~Worker() { stop(); }
+
+    int fd() {
+        if (pid_ <= 0) start();
+        return fd_;
+    }
+
+    // Waits for n bytes until the deadline; ends the grade (worker_lost) when the
+    // worker died or took too long
+    void read(void* data, size_t n, const char* doing) {
+        char* p = static_cast<char*>(data);
+        while (n > 0) {
+            const double left = deadline_ - now();
+            pollfd pfd{fd_, POLLIN, 0};
+            const int ready = left > 0 ? poll(&pfd, 1, int(left * 1000) + 1) : 0;
+            if (ready == 0) {
+                stop();
+                char limit[32];
+                std::snprintf(limit, sizeof limit, "%g", call_timeout());
+                worker_lost("timeout", std::string("no answer after ") + limit + " s " +
+                                           doing + " (an endless loop?)");
+            }
+            if (ready < 0) continue;
+            const ssize_t k = ::read(fd_, p, n);
+            if (k <= 0) died(doing);
+            p += k;
+            n -= size_t(k);
+        }
+    }
+
+    void restart_clock() { deadline_ = now() + call_timeout(); }
+
+    // The worker is out of step (a callback of the trusted side threw): start afresh
+    void stop() {
+        if (pid_ <= 0) return;
+        kill(-pid_, SIGKILL);
+        kill(pid_, SIGKILL);
+        waitpid(pid_, nullptr, 0);
+        close(fd_);
+        pid_ = -1;
+        remove_private_dir();
+    }
+
+    void remove_private_dir() {
+        std::error_code ignored;
+        if (!private_dir_.empty()) std::filesystem::remove_all(private_dir_, ignored);
+        private_dir_.clear();
+    }
+
+    bool seccomp() const { return seccomp_; }
+
+  private:
+    static double now() {
+        return std::chrono::duration<double>(
+                   std::chrono::steady_clock::now().time_since_epoch())
+            .count();
+    }
+
+    void start() {
+        const std::string worker = env_or("RAYLAB_WORKER", "");
+        if (worker.empty() || access(worker.c_str(), X_OK) != 0)
+            worker_lost("crash", "the worker " + worker + " is missing");
+        int fds[2];
+        if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0)
+            worker_lost("crash", "socketpair failed");
+        const std::string log = env_or("RAYLAB_WORKER_LOG", "");
+        if (bwrap_works()) {
+            pid_ = spawn(bwrap_args(worker), fds[1], log, "");
+        } else {
+            char dir[] = "/tmp/raylab-worker-XXXXXX";
+            private_dir_ = mkdtemp(dir) ? dir : "";
+            pid_ = spawn({worker}, fds[1], log, private_dir_);
+        }
+        close(fds[1]);
+        fd_ = fds[0];
+        restart_clock();
+        rpc::Header h{};
+        read(&h, sizeof h, "while starting (in a static initializer?)");
+        if (h.kind != rpc::Kind::hello) died("while starting");
+        seccomp_ = h.flags & 1;
+        log_line("sandbox\t" + sandbox_description());
+    }
+
+    [[noreturn]] void died(const char* doing) {
+        // Give it a second to finish dying, so that its status says how it died
+        int status = 0;
+        pid_t done = 0;
+        for (int k = 0; k < 100 && done == 0; ++k) {
+            done = waitpid(pid_, &status, WNOHANG);
+            if (done == 0) usleep(10000);
+        }
+        if (done == 0) {
+            kill(-pid_, SIGKILL);
+            kill(pid_, SIGKILL);
+            waitpid(pid_, &status, 0);
+        }
+        close(fd_);
+        pid_ = -1;
+        remove_private_dir();
+        std::string how = "exited";
+        int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        // bubblewrap reports a signal that ended the worker as 128 + signal
+        if (WIFSIGNALED(status)) code = 128 + WTERMSIG(status);
+        if (code > 128 && code < 128 + 65)
+            how = "crashed (" + signal_text(code - 128) + ")";
+        else
+            how = "exited (status " + std::to_string(code) + ")";
+        worker_lost("crash", "the student's code " + how + " " + doing);
+    }
+
+    pid_t pid_ = -1;
+    int fd_ = -1;
+    double deadline_ = 0.0;
+    bool seccomp_ = false;
+    std::string private_dir_;
+};
+
+Worker& worker() {
+    static Worker w;
+    return w;
+}
+
+rpc::Buffer read_message(rpc::Header& h, const char* doing) {
+    worker().read(&h, sizeof h, doing);
+    if (h.size > rpc::kMaxPayload) {
+        worker().stop();
+        throw std::runtime_error("the worker sent a message that is too large");
+    }
+    rpc::Buffer b;
+    b.bytes.resize(h.size);
+    worker().read(b.bytes.data(), h.size, doing);
+    return b;
+}
+
+}  // namespace
+
+void shutdown_worker() {
+    worker().stop();
+}
+
+std::string sandbox_description() {
+    std::string s = bwrap_works()
+                        ? "bubblewrap (own namespaces, read-only /usr, private /tmp, "
+                          "no network)"
+                        : "no namespaces (bubblewrap unavailable): private temp folder, "
+                          "clean environment";
+    s += worker().seccomp() ? " + seccomp (no fork, exec, sockets)" : " (no seccomp)";
+    return s + " + rlimits (CPU, 2 GiB memory, 1 MiB files)";
+}
+
+rpc::Buffer exchange(rpc::Function function, std::uint32_t fault, const rpc::Buffer& args,
+                     const Callbacks& callbacks, bool& stubbed) {
+    const int fd = worker().fd();
+    const std::string doing =
+        std::string("in ") + rpc::function_name(static_cast<std::uint32_t>(function));
+    worker().restart_clock();
+    if (!rpc::send(fd, rpc::Kind::call, static_cast<std::uint32_t>(function), fault,
+                   args))
+        worker().read(nullptr, 1, doing.c_str());  // reports how it died
+    for (;;) {
+        rpc::Header h{};
+        rpc::Buffer in = read_message(h, doing.c_str());
+        if (h.kind == rpc::Kind::result) {
+            stubbed = h.flags & 1;
+            return in;
+        }
+        if (h.kind == rpc::Kind::exception)
+            throw std::runtime_error(std::string(in.bytes.begin(), in.bytes.end()));
+        rpc::Buffer out;
+        try {
+            if (h.kind == rpc::Kind::radiance && callbacks.radiance) {
+                Vec2 uv;
+                rpc::get_value(in, uv);
+                rpc::put_value(out, (*callbacks.radiance)(uv));
+            } else if (h.kind == rpc::Kind::occluded && callbacks.occluder) {
+                Ray r;
+                rpc::get_value(in, r);
+                rpc::put_value(out, callbacks.occluder->occluded(r));
+            } else {
+                throw std::runtime_error("the worker sent an unexpected message");
+            }
+        } catch (...) {
+            worker().stop();
+            throw;
+        }
+        if (!rpc::send(fd, rpc::Kind::reply, 0, 0, out))
+            worker().read(nullptr, 1, doing.c_str());
+        worker().restart_clock();
+    }
+}
+
+}  // namespace raylab::grading
