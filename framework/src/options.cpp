@@ -51,7 +51,7 @@ std::string options_help() {
   --eye X,Y,Z           eye point (default: the scene's view)
   --lookat X,Y,Z        look-at point
   --up X,Y,Z            up direction (must not be parallel to lookat - eye)
-  --fov DEGREES         vertical field of view in (0, 180); camera constant d = 1/(2 tan(fov/2))
+  --fov DEGREES         vertical field of view in [0.1, 179.9]; d = 1/(2 tan(fov/2))
   --light X,Y,Z:R,G,B   point light at X,Y,Z with intensity R,G,B [W/sr]; repeatable;
                         replaces the scene's lights
   --ambient A           constant indirect light, times rho (the COMS30115 lab's 0.5
@@ -151,8 +151,8 @@ Options parse_options(int argc, const char* const* argv, bool allow_extra) {
     return o;
 }
 
-Scene make_scene(const Options& o) {
-    Scene scene = load_scene(o.scene);
+Scene make_scene(const Options& o, const LoadProgress& progress) {
+    Scene scene = load_scene(o.scene, progress);
     if (o.eye) scene.view.eye = *o.eye;
     if (o.lookat) scene.view.lookat = *o.lookat;
     if (o.up) scene.view.up = *o.up;

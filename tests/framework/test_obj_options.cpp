@@ -61,7 +61,7 @@ TEST_SUITE("obj") {
         // 1e40 overflows float (tinyobjloader reads a literal "nan" as 0)
         const TempFile nan("raylab-test-nan.obj",
                            "v 1e40 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-        CHECK_THROWS_WITH_AS(load_obj(nan.path), doctest::Contains("non-finite"), Error);
+        CHECK_THROWS_WITH_AS(load_obj(nan.path), doctest::Contains("is not a finite number"), Error);
         const TempFile garbage("raylab-test-garbage.obj",
                                std::string("\x01\x02\xff garbage", 11));
         CHECK_THROWS_AS(load_obj(garbage.path), Error);
@@ -92,8 +92,8 @@ TEST_SUITE("options") {
 
     TEST_CASE("bad values name the flag and the problem") {
         const std::vector<std::pair<std::vector<const char*>, const char*>> cases = {
-            {{"--fov", "0"}, "outside (0, 180)"},
-            {{"--fov", "180"}, "outside (0, 180)"},
+            {{"--fov", "0"}, "outside [0.1, 179.9]"},
+            {{"--fov", "180"}, "outside [0.1, 179.9]"},
             {{"--fov", "nan"}, "not a finite number"},
             {{"--eye", "1,2"}, "not three numbers"},
             {{"--eye", "1,2,inf"}, "not a finite number"},
