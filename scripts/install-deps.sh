@@ -6,6 +6,8 @@
 #            libs     libraries: GLM, tinyobjloader, stb, doctest, Dear ImGui, GLFW, GL headers
 #            gui      running the GUI tests headless: Xvfb, xauth, Mesa, xdotool (alias gui-test)
 #            format   clang-format (the style check of `scripts/dev.sh test`)
+#            fuzz     clang 14 and its runtimes: libFuzzer targets, the stress matrix
+#            sandbox  bubblewrap and libseccomp: the grading worker's sandbox
 #            bench    Embree (the peer of the benchmark)
 #            all      every group above
 #            (default: build libs)
@@ -25,15 +27,17 @@ group_packages() {
         build) echo g++ make cmake ninja-build pkg-config ;;
         # libgl-dev/libopengl-dev: the GL headers and libraries FindOpenGL (GLVND) and GLFW use
         libs) echo libglm-dev libtinyobjloader-dev libstb-dev doctest-dev libimgui-dev \
-            libglfw3-dev libgl-dev libopengl-dev ;;
+            libglfw3-dev libgl-dev libopengl-dev nlohmann-json3-dev ;;
         # xauth is only recommended by xvfb, but xvfb-run needs it; Mesa's llvmpipe renders GL
         gui | gui-test) echo xvfb xauth libgl1-mesa-dri xdotool ;;
         format) echo clang-format ;;
+        fuzz) echo clang libclang-rt-14-dev ;;
+        sandbox) echo bubblewrap libseccomp-dev ;;
         bench) echo libembree-dev ;;
         *) return 1 ;;
     esac
 }
-ALL_GROUPS=(build libs gui format bench)
+ALL_GROUPS=(build libs gui format fuzz sandbox bench)
 
 usage() { sed -n '2,/^[^#]/{/^#/s/^# \{0,1\}//p}' "$0"; }
 
