@@ -33,8 +33,11 @@ Vec3 parse_vec3(const std::string& flag, const std::string& text) {
         parts.push_back(part);
     if (parts.size() != 3 || text.back() == ',')
         throw Error(flag + ": '" + printable(text) + "' is not three numbers x,y,z");
-    return Vec3(parse_float(flag, parts[0]), parse_float(flag, parts[1]),
-                parse_float(flag, parts[2]));
+    // One at a time, so the first bad number is the one named
+    const float x = parse_float(flag, parts[0]);
+    const float y = parse_float(flag, parts[1]);
+    const float z = parse_float(flag, parts[2]);
+    return Vec3(x, y, z);
 }
 
 bool parse_on_off(const std::string& flag, const std::string& text) {
