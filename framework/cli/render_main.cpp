@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <exception>
 #include <future>
+#include <string>
 #include <vector>
 
 #include "raylab/error.h"
@@ -39,8 +40,12 @@ class ProgressLine {
     void show(const char* stage, double fraction, double seconds) {
         if (!tty_) return;
         const auto now = std::chrono::steady_clock::now();
-        if (shown_ && now - last_ < std::chrono::milliseconds(100)) return;
+        // At most ten updates a second, but every new stage at once
+        if (shown_ && stage == last_stage_ &&
+            now - last_ < std::chrono::milliseconds(100))
+            return;
         last_ = now;
+        last_stage_ = stage;
         shown_ = true;
         if (fraction >= 0.0) {
             std::fprintf(stderr, "\r\x1b[K%s %3.0f%% (%.1f s)", stage, 100.0 * fraction,
@@ -61,6 +66,7 @@ class ProgressLine {
     bool tty_;
     bool shown_ = false;
     std::chrono::steady_clock::time_point last_;
+    std::string last_stage_;
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {

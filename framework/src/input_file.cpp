@@ -63,12 +63,14 @@ std::string where(const std::string& source, std::size_t line) {
     return source + ":" + std::to_string(line) + ": ";
 }
 
-std::string read_input_file(const std::string& path, std::size_t max_bytes) {
+namespace {
+
+// Opens path without blocking and checks it: a regular file of at most max_bytes
+int open_checked(const std::string& path, std::size_t max_bytes, struct stat& st) {
     const std::string name = printable(path);
     if (path.empty()) throw Error("an empty file name");
     Fd f{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY)};
     if (f.fd < 0) throw Error(name + ": cannot open file (" + std::strerror(errno) + ")");
-    struct stat st {};
     if (::fstat(f.fd, &st) != 0)
         throw Error(name + ": cannot open file (" + std::strerror(errno) + ")");
     if (!S_ISREG(st.st_mode))
@@ -76,6 +78,22 @@ std::string read_input_file(const std::string& path, std::size_t max_bytes) {
     if (static_cast<unsigned long long>(st.st_size) > max_bytes)
         throw Error(name + ": " + std::to_string(st.st_size) + " bytes, more than the " +
                     size_text(max_bytes) + " allowed");
+    const int fd = f.fd;
+    f.fd = -1;
+    return fd;
+}
+
+}  // namespace
+
+void check_input_file(const std::string& path, std::size_t max_bytes) {
+    struct stat st {};
+    const Fd f{open_checked(path, max_bytes, st)};
+}
+
+std::string read_input_file(const std::string& path, std::size_t max_bytes) {
+    const std::string name = printable(path);
+    struct stat st {};
+    const Fd f{open_checked(path, max_bytes, st)};
     std::string data(static_cast<std::size_t>(st.st_size), '\0');
     std::size_t got = 0;
     while (got < data.size()) {

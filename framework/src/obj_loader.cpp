@@ -118,7 +118,9 @@ void add_triangles(Scene& scene, const tinyobj::attrib_t& attrib,
                    const std::vector<tinyobj::shape_t>& shapes, const std::string& source,
                    const LoadProgress& progress) {
     const int default_material = static_cast<int>(scene.materials.size()) - 1;
-    size_t faces = 0, degenerate = 0;
+    size_t faces = 0, degenerate = 0, total = 0;
+    for (const tinyobj::shape_t& shape : shapes)
+        total += shape.mesh.num_face_vertices.size();
     for (const tinyobj::shape_t& shape : shapes) {
         const tinyobj::mesh_t& mesh = shape.mesh;
         size_t offset = 0;
@@ -126,7 +128,8 @@ void add_triangles(Scene& scene, const tinyobj::attrib_t& attrib,
             const size_t n = mesh.num_face_vertices[f];
             if ((++faces & 0xffff) == 0) {
                 if (progress.cancel && progress.cancel->load()) throw LoadCancelled();
-                if (progress.report) progress.report("triangles", 0.5f);
+                if (progress.report)
+                    progress.report("triangles", static_cast<float>(faces) / total);
             }
             SceneTriangle t;
             if (n != 3 || offset + 3 > mesh.indices.size() ||

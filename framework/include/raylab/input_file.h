@@ -25,6 +25,10 @@ constexpr std::size_t kMaxLine = 4096;                        ///< MTL and view 
 /// Throws raylab::Error "PATH: problem" (PATH escaped, see printable).
 std::string read_input_file(const std::string& path, std::size_t max_bytes);
 
+/// The checks of read_input_file without reading: a regular file, openable, at most
+/// max_bytes. Throws raylab::Error.
+void check_input_file(const std::string& path, std::size_t max_bytes);
+
 /// The lines of text: a leading UTF-8 BOM dropped, a CR before each LF dropped. Throws
 /// raylab::Error "SOURCE:LINE: line longer than N bytes" past max_line.
 std::vector<std::string_view> split_lines(std::string_view text, std::size_t max_line,
