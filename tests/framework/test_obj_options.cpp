@@ -58,10 +58,11 @@ TEST_SUITE("obj") {
         const TempFile empty("raylab-test-empty.obj", "# nothing\nv 0 0 0\n");
         CHECK_THROWS_WITH_AS(load_obj(empty.path), doctest::Contains("holds no faces"),
                              Error);
-        // 1e40 overflows float (tinyobjloader reads a literal "nan" as 0)
+        // 1e40 overflows float (and a literal "nan" is refused as well)
         const TempFile nan("raylab-test-nan.obj",
                            "v 1e40 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-        CHECK_THROWS_WITH_AS(load_obj(nan.path), doctest::Contains("is not a finite number"), Error);
+        CHECK_THROWS_WITH_AS(load_obj(nan.path),
+                             doctest::Contains("is not a finite number"), Error);
         const TempFile garbage("raylab-test-garbage.obj",
                                std::string("\x01\x02\xff garbage", 11));
         CHECK_THROWS_AS(load_obj(garbage.path), Error);
