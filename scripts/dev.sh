@@ -184,9 +184,12 @@ cmd_build() {
 cmd_run() {
     install_deps build libs
     configure_everyday
-    # Only what the first picture needs: the viewer and raylab-render
+    # Only what the first picture needs: raylab-render, and the viewer when there is a
+    # display to show it on
     local targets=(raylab-render)
-    has_target "$BUILD_DIR" raylab-viewer && targets+=(raylab-viewer)
+    if [[ -n ${DISPLAY:-} ]] && has_target "$BUILD_DIR" raylab-viewer; then
+        targets+=(raylab-viewer)
+    fi
     compile "$BUILD_DIR" "${targets[@]}"
     local viewer=$RAYLAB_ROOT/$BUILD_DIR/framework/viewer/raylab
     local render=$RAYLAB_ROOT/$BUILD_DIR/framework/raylab-render
