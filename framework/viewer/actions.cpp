@@ -6,8 +6,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include <GLFW/glfw3.h>
-
 #include "raylab/error.h"
 #include "raylab/input_checks.h"
 #include "raylab/input_file.h"
@@ -62,13 +60,14 @@ int preview_factor(double full_ms) {
 namespace {
 
 // The loading thread's progress and warnings go to the status the UI reads
-LoadProgress progress_of(const std::shared_ptr<LoadStatus>& status) {
+LoadProgress progress_of(const std::shared_ptr<LoadStatus>& status,
+                         const std::function<void()>& wake) {
     LoadProgress p;
     p.cancel = &status->cancel;
-    p.report = [status](const char* stage, float fraction) {
+    p.report = [status, wake](const char* stage, float fraction) {
         status->stage.store(stage);
         status->fraction.store(fraction);
-        glfwPostEmptyEvent();  // the UI sleeps until an event: show the new fraction
+        if (wake) wake();  // the UI sleeps until an event: show the new fraction
     };
     p.warn = [](const std::string& message) {
         std::fprintf(stderr, "raylab: warning: %s\n", message.c_str());
@@ -85,8 +84,8 @@ void start_loading(Viewer& v, const Options& options, bool initial,
     v.load_status = status;
     v.loading_source = options.scene;
     v.log.add("loading " + options.scene + " ...");
-    v.loading = std::async(std::launch::async, [options, status] {
-        return make_scene(options, progress_of(status));
+    v.loading = std::async(std::launch::async, [options, status, wake = v.wake] {
+        return make_scene(options, progress_of(status, wake));
     });
 }
 
@@ -95,6 +94,7 @@ void start_loading(Viewer& v, const Options& options, bool initial,
 void init_viewer(Viewer& v, const Options& options, const ViewerOptions& viewer_options,
                  std::function<void()> wake) {
     v.options = viewer_options;
+    v.wake = wake;
     ViewerState& s = v.state;
     // A built-in scene at once; an OBJ in the background, so the window opens first and
     // shows its progress. A file that cannot be opened is an error before the window.

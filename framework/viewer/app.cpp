@@ -251,16 +251,16 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
         glfwSwapBuffers(v->window);
     }
     const int exit_status = exit_actions(*v);
-    cleanup(*v);
     const int code = exit_code != 0 ? exit_code : exit_status;
     // A load still running (tinyobjloader's parse and the BVH build cannot stop midway):
     // ask it to stop, and do not wait long for it, so Ctrl+Q always exits
     cancel_loading(*v);
-    if (v->loading.valid() && v->loading.wait_for(std::chrono::milliseconds(500)) !=
-                                  std::future_status::ready) {
+    if (v->loading.valid() &&
+        v->loading.wait_for(std::chrono::milliseconds(500)) != std::future_status::ready) {
         std::fflush(nullptr);
         std::_Exit(code);
     }
+    cleanup(*v);
     return code;
 }
 

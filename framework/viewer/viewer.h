@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <future>
 #include <memory>
 #include <optional>
@@ -141,8 +142,9 @@ struct Viewer {
     std::future<Scene> loading;  ///< an OBJ being loaded in the background
     std::string loading_source;
     std::shared_ptr<LoadStatus> load_status;  ///< the progress of loading
-    unsigned texture = 0;   ///< GL texture of the shown image or heat map
-    int texture_width = 0;  ///< 0: nothing uploaded yet
+    std::function<void()> wake;  ///< wakes the UI thread (posts an empty GLFW event)
+    unsigned texture = 0;        ///< GL texture of the shown image or heat map
+    int texture_width = 0;       ///< 0: nothing uploaded yet
     int texture_height = 0;
     bool texture_is_heat = false;  ///< the texture shows the difference heat map
     float panel_width = 430.0f;
