@@ -255,8 +255,8 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
     // A load still running (tinyobjloader's parse and the BVH build cannot stop midway):
     // ask it to stop, and do not wait long for it, so Ctrl+Q always exits
     cancel_loading(*v);
-    if (v->loading.valid() &&
-        v->loading.wait_for(std::chrono::milliseconds(500)) != std::future_status::ready) {
+    if (v->loading.valid() && v->loading.wait_for(std::chrono::milliseconds(500)) !=
+                                  std::future_status::ready) {
         std::fflush(nullptr);
         std::_Exit(code);
     }
