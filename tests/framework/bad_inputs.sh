@@ -12,9 +12,9 @@
 # Table: one case a line, tab-separated: ID, ENTRY, EXIT, FRAGMENT ("-": none), INPUT.
 #   ENTRY render  INPUT is raylab-render's arguments (shell words; @T@ is a scratch folder
 #                 with the fixtures below, @D@ the folder of this script's data)
-#         obj     INPUT is OBJ text (printf escapes; "|||" starts the text of @T@/m.mtl),
+#         obj     INPUT is OBJ text (echo -e escapes: \n \r \xHH \e; "|||" starts the text of @T@/m.mtl),
 #                 loaded with raylab-render --scene @T@/case.obj
-#         view    INPUT is view-file text (printf escapes), loaded as --load-view would
+#         view    INPUT is view-file text (the same escapes), loaded as --load-view would
 #         viewer  INPUT is the viewer's arguments (shell words)
 #   root-only cases are marked ENTRY render!: skipped when running as root (root reads
 #   files whatever their mode).
@@ -56,10 +56,10 @@ while IFS=$'\t' read -r id entry want fragment input || [[ -n $id ]]; do
     case $entry in
         render) eval "args=($input)"; cmd=("$render" --width 8 --height 8 --output "$out" "${args[@]}") ;;
         obj)
-            printf "${input%%|||*}" >"$T/case.obj"
-            [[ $input == *'|||'* ]] && printf "${input#*|||}" >"$T/m.mtl"
+            printf '%b' "${input%%|||*}" >"$T/case.obj"
+            [[ $input == *'|||'* ]] && printf '%b' "${input#*|||}" >"$T/m.mtl"
             cmd=("$render" --width 8 --height 8 --output "$out" --scene "$T/case.obj") ;;
-        view) printf "$input" >"$T/case.view"; cmd=("$check" view "$T/case.view") ;;
+        view) printf '%b' "$input" >"$T/case.view"; cmd=("$check" view "$T/case.view") ;;
         viewer) eval "args=($input)"; cmd=("$check" viewer "${args[@]}") ;;
         *) echo "$id: unknown entry '$entry'"; failed=$((failed + 1)); continue ;;
     esac
