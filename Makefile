@@ -4,7 +4,10 @@
 #   make test                                what CI runs
 #   make grade SUBMISSION=~/handin GRADE_OUT=grades/alice
 #   make release OUT=/tmp/raylab-student
-# `make help` lists everything. Variables: ARGS, SUBMISSION, GRADE_OUT, OUT.
+#   make grade-class DIR=~/handins ARGS="-j 2"
+#   make gradescope OUT=autograder.zip
+#   make fuzz ARGS=600                       each fuzz target for 600 s
+# `make help` lists everything. Variables: ARGS, SUBMISSION, GRADE_OUT, OUT, DIR.
 
 DEV := ./scripts/dev.sh
 
@@ -17,10 +20,14 @@ export GRADE_OUT
 endif
 
 .DEFAULT_GOAL := help
-.PHONY: run test build grade grade-reference release bench format clean help
+.PHONY: run test build grade grade-reference grade-class gradescope release bench fuzz \
+	format clean help
 
-run test build grade grade-reference bench format clean help:
+run test build grade grade-reference bench fuzz format clean help:
 	$(DEV) $@ $(ARGS)
 
-release:
-	$(DEV) release $(OUT) $(ARGS)
+release gradescope:
+	$(DEV) $@ $(OUT) $(ARGS)
+
+grade-class:
+	$(DEV) grade-class $(DIR) $(ARGS)

@@ -2,21 +2,31 @@
 # raylab's front door: installs what is missing, builds, runs, tests. Works from any folder.
 #
 # Usage: scripts/dev.sh COMMAND [ARGS...]
-#   run [FLAGS]        build (Release, build/) and open the viewer on the Cornell box; without a
-#                      display (or a viewer) render build/cornell.png with raylab-render instead.
+#   run [FLAGS]        build the viewer and raylab-render only (Release, build/, warnings are
+#                      not errors) and open the viewer on the Cornell box; without a display
+#                      (or a viewer) render build/cornell.png with raylab-render instead.
 #                      FLAGS go to the viewer or to raylab-render (e.g. --reference all)
-#   test               everything CI checks: warnings as errors, clang-format, an address and
-#                      undefined-behaviour sanitizer build (build-asan/) running the unit tests,
-#                      then every test in build/ (GUI tests under Xvfb)
-#   build              configure and build build/ (Release)
-#   grade [ARGS]       grade exercises (scripts/grade.sh); env SUBMISSION=DIR grades a hand-in,
+#   test               everything CI checks, in build folders of its own: warnings as errors
+#                      (build-ci/), clang-format, an address and undefined-behaviour sanitizer
+#                      build (build-asan/) running the unit tests, a few seconds of each fuzz
+#                      target (build-fuzz/, when clang is installed), scripts/stress-matrix.sh
+#                      (when it exists), then every test in build-ci/ (GUI tests under Xvfb)
+#   build              configure and build everything in build/ (Release)
+#   grade [ARGS]       grade exercises (scripts/grade.sh [--timeout S] [--points N]
+#                      [--expect full|not-started]); env SUBMISSION=DIR grades a hand-in,
 #                      GRADE_OUT=DIR chooses where the reports go (default build/grade/)
 #   grade-reference    grade the reference solutions (scripts/grade.sh --reference)
+#   grade-class DIR [-j N]  grade every hand-in in DIR (scripts/grade-class.sh)
+#   gradescope OUT     make the Gradescope autograder package (scripts/make-gradescope.sh)
 #   release [OUT]      make the student release (scripts/make-student-release.sh)
 #   bench [ARGS]       build with Embree and run build/bench/raylab-bench ARGS
+#   fuzz [SECONDS]     run each fuzz target SECONDS (default 600) in build-fuzz/ (needs clang)
 #   format             apply clang-format to the tracked C++ sources
-#   clean              delete the build folders (build/ and every build-*/)
+#   clean              delete the build folders this script made (it lists them)
 #   help               this text
+#
+# Each build folder is locked while a command uses it: a second dev.sh on the same folder
+# waits and says so.
 #
 # Environment: RAYLAB_NO_INSTALL=1 skips the package check (non-Debian systems);
 # CMAKE_ARGS="..." adds options to every configure; CI=true is honoured (nothing prompts).
@@ -26,9 +36,14 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
 CALLER_DIR=$PWD # `run` resolves relative paths in its flags from here
 cd "$RAYLAB_ROOT"
 
-BUILD_DIR=build      # the everyday build (Release), also tested by `test`
+BUILD_DIR=build      # the everyday build (Release, warnings are not errors)
+CI_DIR=build-ci      # the strict build of `test` (warnings as errors), what CI checks
 ASAN_DIR=build-asan  # the sanitizer build of `test` (same options as the asan preset)
+FUZZ_DIR=build-fuzz  # libFuzzer targets (clang; fuzz/CMakeLists.txt)
+MARKER=.raylab-build # in every folder configure() made: `clean` deletes only those
 JOBS=$(nproc 2>/dev/null || echo 2)
+# shellcheck source=lib/build.sh
+source "$RAYLAB_ROOT/scripts/lib/build.sh"
 
 usage() { sed -n '2,/^[^#]/{/^#/s/^# \{0,1\}//p}' "$0"; }
 
@@ -41,48 +56,6 @@ install_deps() {
         return
     fi
     "$RAYLAB_ROOT/scripts/install-deps.sh" "$@"
-}
-
-# configure DIR [CMAKE OPTIONS...]: Ninja for a new folder when there is ninja; an existing
-# folder keeps the generator it was made with
-configure() {
-    local dir=$1
-    shift
-    local gen=()
-    if [[ ! -f $dir/CMakeCache.txt ]] && have ninja; then gen=(-G Ninja); fi
-    local extra=()
-    if [[ -n ${CMAKE_ARGS:-} ]]; then read -r -a extra <<<"$CMAKE_ARGS"; fi
-    step "Configuring $dir/ ($*)"
-    mkdir -p "$dir"
-    local log=$dir/raylab-configure.log
-    cmake -S "$RAYLAB_ROOT" -B "$dir" "${gen[@]}" "$@" "${extra[@]}" >"$log" 2>&1 || {
-        cat "$log" >&2
-        die "configuring $dir/ failed (log above)"
-    }
-    # The project's own messages and CMake's warnings; the rest stays in the log
-    grep -E '^(-- raylab|CMake (Warning|Deprecation))' "$log" | sed 's/^/    /' || true
-}
-
-# compile DIR [TARGET...]
-compile() {
-    local dir=$1
-    shift
-    local targets=()
-    (($#)) && targets=(--target "$@")
-    step "Building $dir/${1:+ (target $*)} with $JOBS jobs"
-    local t0=$SECONDS
-    cmake --build "$dir" -j "$JOBS" "${targets[@]}" || die "building $dir/ failed (errors above)"
-    note "built in $((SECONDS - t0)) s"
-}
-
-# Does the build folder DIR know the target NAME?
-has_target() {
-    local dir=$1 name=$2
-    if [[ -f $dir/build.ninja ]]; then
-        ninja -C "$dir" -t query "$name" >/dev/null 2>&1
-    else
-        make -C "$dir" -n "$name" >/dev/null 2>&1
-    fi
 }
 
 # Is FLAG among the remaining arguments (as FLAG or FLAG=...)?
@@ -130,14 +103,35 @@ run_script() {
 
 # ---- Commands --------------------------------------------------------------------------
 
+# no_args COMMAND ARGS...: the command takes no arguments
+no_args() {
+    local command=$1
+    shift
+    (($# == 0)) || die "'$command' takes no arguments, got: $* (see scripts/dev.sh help)"
+}
+
+# The everyday build: never -Werror, so a half-written exercise still builds
+configure_everyday() {
+    configure "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WERROR=OFF
+}
+
 cmd_build() {
+    no_args build "$@"
     install_deps build libs
-    configure "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release
+    configure_everyday
     compile "$BUILD_DIR"
 }
 
 cmd_run() {
-    cmd_build
+    install_deps build libs
+    configure_everyday
+    # Only what the first picture needs: raylab-render, and the viewer when there is a
+    # display to show it on
+    local targets=(raylab-render)
+    if [[ -n ${DISPLAY:-} ]] && has_target "$BUILD_DIR" raylab-viewer; then
+        targets+=(raylab-viewer)
+    fi
+    compile "$BUILD_DIR" "${targets[@]}"
     local viewer=$RAYLAB_ROOT/$BUILD_DIR/framework/viewer/raylab
     local render=$RAYLAB_ROOT/$BUILD_DIR/framework/raylab-render
     local scene=()
@@ -184,13 +178,38 @@ run_ctest() {
     (cd "$dir" && ctest --output-on-failure -j "$JOBS" --no-tests=error "$@")
 }
 
+# fuzz_run SECONDS: build the fuzz targets with clang and run each SECONDS
+fuzz_run() {
+    local seconds=$1
+    lock "$FUZZ_DIR"
+    if [[ ! -f $FUZZ_DIR/CMakeCache.txt ]]; then
+        step "Configuring $FUZZ_DIR/ (clang, libFuzzer, ASan, UBSan)"
+        : >"$FUZZ_DIR/$MARKER"
+        CC=clang CXX=clang++ cmake -S fuzz -B "$FUZZ_DIR" -G Ninja >"$FUZZ_DIR/configure.log" 2>&1 ||
+            { cat "$FUZZ_DIR/configure.log" >&2; die "configuring $FUZZ_DIR/ failed"; }
+    fi
+    compile "$FUZZ_DIR" fuzz-obj fuzz-view fuzz-options
+    step "Fuzzing each target for $seconds s (fuzz/run.sh; crashes in $FUZZ_DIR/artifacts/)"
+    fuzz/run.sh "$FUZZ_DIR" "$seconds" || die "a fuzz target failed (output above)"
+}
+
+cmd_fuzz() {
+    local seconds=${1:-600}
+    (($# <= 1)) || die "'fuzz' takes at most one argument (SECONDS), got: $*"
+    [[ $seconds =~ ^[1-9][0-9]{0,5}$ ]] || die "fuzz: '$seconds' is not a number of seconds"
+    install_deps build libs fuzz
+    have clang++ || die "fuzzing needs clang: scripts/install-deps.sh fuzz"
+    fuzz_run "$seconds"
+}
+
 cmd_test() {
-    install_deps build libs gui format
+    no_args test "$@"
+    install_deps build libs gui format fuzz
     local t0=$SECONDS
 
-    # Warnings as errors, GUI included
-    configure "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WERROR=ON
-    compile "$BUILD_DIR"
+    # Warnings as errors, GUI included, in a folder of its own (build/ stays lenient)
+    configure "$CI_DIR" -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WERROR=ON
+    compile "$CI_DIR"
 
     cmd_format_check
 
@@ -209,17 +228,50 @@ cmd_test() {
         UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
         run_ctest "$ASAN_DIR" "${select[@]}" || die "sanitizer tests failed (output above)"
 
+    # A few seconds of each fuzz target, replaying every crash kept in fuzz/crashes/
+    if have clang++; then
+        fuzz_run 5
+    else
+        warn "clang++ is missing: the fuzz targets did not run (scripts/install-deps.sh fuzz)"
+    fi
+    if [[ -f scripts/stress-matrix.sh ]]; then
+        step "The numerical stress matrix (scripts/stress-matrix.sh)"
+        bash scripts/stress-matrix.sh || die "scripts/stress-matrix.sh failed (output above)"
+    fi
+
     # Last, so that the output ends with ctest's summary
-    step "All tests in $BUILD_DIR/ (ctest; $((SECONDS - t0)) s so far)"
-    run_ctest "$BUILD_DIR"
+    step "All tests in $CI_DIR/ (ctest; $((SECONDS - t0)) s so far)"
+    run_ctest "$CI_DIR"
 }
 
 cmd_grade() {
+    check_grade_args "$@"
     install_deps build libs
     run_script scripts/grade.sh "$@"
 }
 
+cmd_grade_class() {
+    (($# >= 1)) || die "grade-class needs the folder of hand-ins: grade-class DIR [-j N]"
+    local dir=$1
+    [[ -d $dir ]] || die "grade-class: '$dir' is not a folder"
+    case $# in
+        1) ;;
+        3) [[ $2 == -j && $3 =~ ^[1-9][0-9]{0,2}$ ]] ||
+            die "grade-class: expected -j N (N from 1 to 999), got: ${*:2}" ;;
+        *) die "grade-class takes DIR [-j N], got: $*" ;;
+    esac
+    install_deps build libs
+    run_script scripts/grade-class.sh "$@"
+}
+
+cmd_gradescope() {
+    (($# == 1)) || die "gradescope takes one argument, the output file or folder: gradescope OUT"
+    install_deps build libs
+    run_script scripts/make-gradescope.sh "$@"
+}
+
 cmd_release() {
+    (($# <= 1)) || die "release takes at most one argument (OUT), got: $*"
     install_deps build libs
     run_script scripts/make-student-release.sh "$@"
 }
@@ -235,6 +287,7 @@ cmd_bench() {
 }
 
 cmd_format() {
+    no_args format "$@"
     install_deps format
     step "Formatting the tracked C++ sources (clang-format -i)"
     local changed=0 n=0 f
@@ -249,14 +302,30 @@ cmd_format() {
     note "$changed of $n files changed"
 }
 
+# Did this project make the folder DIR? (configure's marker, or a CMake cache of this tree)
+made_here() {
+    local dir=$1 home
+    [[ -f $dir/$MARKER ]] && return 0
+    home=$(sed -n 's/^CMAKE_HOME_DIRECTORY:INTERNAL=//p' "$dir/CMakeCache.txt" 2>/dev/null)
+    [[ -n $home && ($home == "$RAYLAB_ROOT" || $home == "$RAYLAB_ROOT"/*) ]]
+}
+
 cmd_clean() {
-    step "Deleting build/ and build-*/ (all generated; .gitignore lists them)"
-    local d
+    no_args clean "$@"
+    local d deleted=0
     for d in build build-*/; do
-        [[ -d $d ]] || continue
-        rm -rf "${d%/}"
-        note "deleted ${d%/}/"
+        d=${d%/}
+        [[ -d $d && ! -L $d ]] || continue
+        if ! made_here "$d"; then
+            note "kept $d/ (not made by raylab's build: no $MARKER and no CMake cache of this tree)"
+            continue
+        fi
+        lock "$d"
+        step "Deleting $d/ ($(du -sh "$d" 2>/dev/null | cut -f1))"
+        rm -rf "$d"
+        deleted=$((deleted + 1))
     done
+    note "deleted $deleted build folder(s)"
 }
 
 # ---- Dispatch --------------------------------------------------------------------------
@@ -269,11 +338,14 @@ case $command in
     build) cmd_build "$@" ;;
     grade) cmd_grade "$@" ;;
     grade-reference) cmd_grade --reference "$@" ;;
+    grade-class) cmd_grade_class "$@" ;;
+    gradescope) cmd_gradescope "$@" ;;
     release) cmd_release "$@" ;;
     bench) cmd_bench "$@" ;;
+    fuzz) cmd_fuzz "$@" ;;
     format) cmd_format "$@" ;;
-    clean) cmd_clean ;;
-    help | -h | --help) usage ;;
+    clean) cmd_clean "$@" ;;
+    help | -h | --help) no_args help "$@"; usage ;;
     *)
         usage >&2
         die "unknown command '$command'"

@@ -6,6 +6,7 @@
 #            libs     libraries: GLM, tinyobjloader, stb, doctest, Dear ImGui, GLFW, GL headers
 #            gui      running the GUI tests headless: Xvfb, xauth, Mesa, xdotool (alias gui-test)
 #            format   clang-format (the style check of `scripts/dev.sh test`)
+#            fuzz     clang 14 and its runtimes: libFuzzer targets, the stress matrix
 #            bench    Embree (the peer of the benchmark)
 #            all      every group above
 #            (default: build libs)
@@ -19,21 +20,23 @@ set -euo pipefail
 # shellcheck source=lib/common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
 
-# Package groups (Debian 12 names; versions in ../shared/BUILD-NOTES.md)
+# Package groups (Debian 12 names)
 group_packages() {
     case $1 in
         build) echo g++ make cmake ninja-build pkg-config ;;
-        # libgl-dev/libopengl-dev: the GL headers and libraries FindOpenGL (GLVND) and GLFW use
+        # libgl-dev/libopengl-dev: the GL headers and libraries FindOpenGL (GLVND) and GLFW use;
+        # libseccomp-dev and bubblewrap: the grader's sandbox (docs/instructor-guide.md)
         libs) echo libglm-dev libtinyobjloader-dev libstb-dev doctest-dev libimgui-dev \
             libglfw3-dev libgl-dev libopengl-dev nlohmann-json3-dev libseccomp-dev bubblewrap ;;
         # xauth is only recommended by xvfb, but xvfb-run needs it; Mesa's llvmpipe renders GL
         gui | gui-test) echo xvfb xauth libgl1-mesa-dri xdotool ;;
         format) echo clang-format ;;
+        fuzz) echo clang libclang-rt-14-dev ;;
         bench) echo libembree-dev ;;
         *) return 1 ;;
     esac
 }
-ALL_GROUPS=(build libs gui format bench)
+ALL_GROUPS=(build libs gui format fuzz bench)
 
 usage() { sed -n '2,/^[^#]/{/^#/s/^# \{0,1\}//p}' "$0"; }
 

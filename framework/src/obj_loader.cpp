@@ -1,12 +1,14 @@
-// OBJ loading with Debian's tinyobjloader (raylab/scenes.h). We use the library rather
-// than a parser of our own: it handles MTL files, negative indices, polygons and line
-// continuations, and reports errors with line numbers.
+// OBJ loading with Debian's tinyobjloader (raylab/scenes.h). Every line is checked first
+// (obj_text.cpp); the library then triangulates and builds shapes and materials.
 #include <cmath>
-#include <fstream>
+#include <map>
+#include <sstream>
 
 #include <tiny_obj_loader.h>
 
+#include "obj_text.h"
 #include "raylab/error.h"
+#include "raylab/input_file.h"
 #include "raylab/scenes.h"
 
 namespace raylab {
@@ -46,84 +48,164 @@ void frame_model(Scene& scene) {
     scene.lights.push_back(PointLight{p, Vec3(3.0f * r * r)});
 }
 
-}  // namespace
-
-Scene load_obj(const std::string& path) {
-    if (!std::ifstream(path)) throw Error(path + ": cannot open file");
-    tinyobj::ObjReaderConfig config;
-    config.triangulate = true;
-    config.vertex_color = false;
-    tinyobj::ObjReader reader;
-    if (!reader.ParseFromFile(path, config)) {
-        const std::string why = first_line(reader.Error());
-        throw Error(path + ": " + (why.empty() ? "not a valid OBJ file" : why));
+class CheckedMaterials : public tinyobj::MaterialReader {
+  public:
+    explicit CheckedMaterials(const std::map<std::string, std::string>& files)
+        : files_(files) {}
+    bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                    std::map<std::string, int>* ids, std::string* warn,
+                    std::string* err) override {
+        const auto it = files_.find(name);
+        if (it == files_.end()) {
+            if (err) *err += "mtllib '" + printable(name) + "' was not checked\n";
+            return false;
+        }
+        std::istringstream in(it->second);
+        tinyobj::LoadMtl(ids, materials, &in, warn, err);
+        return true;
     }
-    const tinyobj::attrib_t& attrib = reader.GetAttrib();
-    Scene scene;
-    scene.name = path;
 
-    // Materials: Kd is rho, Ke emission; one grey default for faces without a material
-    for (const tinyobj::material_t& m : reader.GetMaterials()) {
+  private:
+    const std::map<std::string, std::string>& files_;
+};
+
+void add_materials(Scene& scene, const std::vector<tinyobj::material_t>& materials) {
+    for (const tinyobj::material_t& m : materials) {
         Material mat;
         mat.name = m.name;
         mat.rho = Vec3(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
         mat.Le = Vec3(m.emission[0], m.emission[1], m.emission[2]);
         if (!is_finite(mat.rho) || !is_finite(mat.Le))
-            throw Error(path + ": material '" + m.name + "' has a non-finite colour");
+            throw Error("material '" + printable(m.name) + "' has a non-finite colour");
         mat.rho = glm::clamp(mat.rho, Vec3(0.0f), Vec3(1.0f));
         scene.materials.push_back(mat);
     }
-    const int default_material = static_cast<int>(scene.materials.size());
     scene.materials.push_back(Material{"default", Vec3(0.75f), Vec3(0.0f)});
+}
 
-    // Triangles (the reader triangulated every face)
-    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+// One triangle of the mesh, or false when it has no area (it could never be hit)
+bool make_triangle(const tinyobj::attrib_t& attrib, const tinyobj::index_t* idx,
+                   const std::string& source, SceneTriangle& t) {
+    Vec3* v[3] = {&t.v0, &t.v1, &t.v2};
+    Vec3* vn[3] = {&t.n0, &t.n1, &t.n2};
+    bool has_normals = true;
+    for (size_t k = 0; k < 3; ++k) {
+        *v[k] = vertex(attrib.vertices, idx[k].vertex_index, source, "vertex");
+        if (idx[k].normal_index < 0) {
+            has_normals = false;
+        } else {
+            *vn[k] = vertex(attrib.normals, idx[k].normal_index, source, "normal");
+        }
+    }
+    const float area = glm::length(glm::cross(t.v1 - t.v0, t.v2 - t.v0));
+    if (!(area > 0.0f) || !std::isfinite(area)) return false;
+    // Normals: the file's, normalised, or none (flat shading from the geometry)
+    if (has_normals) {
+        for (Vec3* nk : vn) {
+            const float len = glm::length(*nk);
+            if (!(len > 0.0f) || !std::isfinite(len)) {
+                has_normals = false;
+                break;
+            }
+            *nk /= len;
+        }
+    }
+    if (!has_normals) t.n0 = t.n1 = t.n2 = Vec3(0.0f);
+    return true;
+}
+
+void add_triangles(Scene& scene, const tinyobj::attrib_t& attrib,
+                   const std::vector<tinyobj::shape_t>& shapes, const std::string& source,
+                   const LoadProgress& progress) {
+    const int default_material = static_cast<int>(scene.materials.size()) - 1;
+    size_t faces = 0, degenerate = 0, total = 0;
+    for (const tinyobj::shape_t& shape : shapes)
+        total += shape.mesh.num_face_vertices.size();
+    for (const tinyobj::shape_t& shape : shapes) {
         const tinyobj::mesh_t& mesh = shape.mesh;
         size_t offset = 0;
         for (size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
             const size_t n = mesh.num_face_vertices[f];
-            if (n != 3) {
-                offset += n;
-                continue;  // degenerate polygon the triangulator left alone
+            if ((++faces & 0xffff) == 0) {
+                if (progress.cancel && progress.cancel->load()) throw LoadCancelled();
+                if (progress.report)
+                    progress.report("triangles", static_cast<float>(faces) / total);
             }
             SceneTriangle t;
-            Vec3* v[3] = {&t.v0, &t.v1, &t.v2};
-            Vec3* vn[3] = {&t.n0, &t.n1, &t.n2};
-            bool has_normals = true;
-            for (size_t k = 0; k < 3; ++k) {
-                const tinyobj::index_t idx = mesh.indices[offset + k];
-                *v[k] = vertex(attrib.vertices, idx.vertex_index, path, "vertex");
-                if (idx.normal_index < 0) {
-                    has_normals = false;
-                } else {
-                    *vn[k] = vertex(attrib.normals, idx.normal_index, path, "normal");
-                }
+            if (n != 3 || offset + 3 > mesh.indices.size() ||
+                !make_triangle(attrib, &mesh.indices[offset], source, t)) {
+                ++degenerate;
+                offset += n;
+                continue;
             }
-            if (!is_finite(t.v0) || !is_finite(t.v1) || !is_finite(t.v2))
-                throw Error(path + ": shape '" + shape.name +
-                            "' has a non-finite vertex");
-            // Normals: the file's, normalised, or none (flat shading from the geometry)
-            if (has_normals) {
-                for (Vec3* nk : vn) {
-                    const float len = glm::length(*nk);
-                    if (!(len > 0.0f) || !std::isfinite(len)) {
-                        has_normals = false;
-                        break;
-                    }
-                    *nk /= len;
-                }
-            }
-            if (!has_normals) t.n0 = t.n1 = t.n2 = Vec3(0.0f);
             const int m = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
             t.material = m >= 0 && m < default_material ? m : default_material;
             scene.triangles.push_back(t);
             offset += n;
         }
     }
-    if (scene.triangles.empty()) throw Error(path + ": the file holds no faces");
+    if (scene.triangles.empty()) {
+        throw Error(source + ": no valid triangle" +
+                    (degenerate
+                         ? " (" + std::to_string(degenerate) + " faces without area)"
+                         : std::string(" (the file holds no faces)")));
+    }
+    if (degenerate > 0)
+        obj::warn(progress, source + ": skipped " + std::to_string(degenerate) +
+                                " faces without area");
+}
+
+}  // namespace
+
+Scene load_obj_text(const std::string& text, const std::string& source,
+                    const std::function<std::string(const std::string&)>& read_mtl,
+                    const LoadProgress& progress) {
+    const obj::CheckedObj checked = obj::check_obj(text, source, read_mtl, progress);
+    if (progress.report) progress.report("parsing", 0.0f);
+    if (progress.cancel && progress.cancel->load()) throw LoadCancelled();
+    // ObjReader has no stream entry with a material reader: call LoadObj directly
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> materials;
+    std::string warnings, errors;
+    std::istringstream in(checked.obj);
+    CheckedMaterials mtl_files(checked.mtl);
+    if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warnings, &errors, &in,
+                          &mtl_files, true, false)) {
+        throw Error(
+            source + ": " +
+            printable(errors.empty() ? "not a valid OBJ file" : first_line(errors)));
+    }
+    std::istringstream lines(warnings);
+    for (std::string line; std::getline(lines, line);)
+        if (!line.empty()) obj::warn(progress, source + ": " + printable(line));
+    Scene scene;
+    scene.name = source;
+    try {
+        add_materials(scene, materials);
+    } catch (const Error& e) {
+        throw Error(source + ": " + e.what());
+    }
+    add_triangles(scene, attrib, shapes, source, progress);
+    if (progress.cancel && progress.cancel->load()) throw LoadCancelled();
+    if (progress.report) progress.report("BVH", 0.0f);
     scene.commit();
+    if (progress.report) progress.report("BVH", 1.0f);
     frame_model(scene);
     return scene;
+}
+
+Scene load_obj(const std::string& path, const LoadProgress& progress) {
+    const std::string text = read_input_file(path, kMaxObjBytes);
+    const std::string source = printable(path);
+    const size_t slash = path.find_last_of('/');
+    const std::string folder =
+        slash == std::string::npos ? "" : path.substr(0, slash + 1);
+    const auto read_mtl = [&](const std::string& name) {
+        return read_input_file(name.empty() || name[0] == '/' ? name : folder + name,
+                               kMaxMtlBytes);
+    };
+    return load_obj_text(text, source, read_mtl, progress);
 }
 
 }  // namespace raylab

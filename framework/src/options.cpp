@@ -1,12 +1,11 @@
 // Command-line flags (raylab/options.h).
 #include "raylab/options.h"
 
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
 #include <sstream>
 
 #include "raylab/error.h"
+#include "raylab/input_checks.h"
+#include "raylab/input_file.h"
 #include "raylab/scenes.h"
 
 namespace raylab {
@@ -14,21 +13,16 @@ namespace raylab {
 namespace {
 
 float parse_float(const std::string& flag, const std::string& text) {
-    errno = 0;
-    char* end = nullptr;
-    const float x = std::strtof(text.c_str(), &end);
-    if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(x))
-        throw Error(flag + ": '" + text + "' is not a finite number");
+    float x = 0.0f;
+    if (!parse_real(text, x))
+        throw Error(flag + ": '" + printable(text) + "' is not a finite number");
     return x;
 }
 
 int parse_int(const std::string& flag, const std::string& text) {
-    errno = 0;
-    char* end = nullptr;
-    const long x = std::strtol(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0' || errno == ERANGE || x < -1000000000L ||
-        x > 1000000000L)
-        throw Error(flag + ": '" + text + "' is not a whole number");
+    long long x = 0;
+    if (!parse_whole(text, -1000000000LL, 1000000000LL, x))
+        throw Error(flag + ": '" + printable(text) + "' is not a whole number");
     return static_cast<int>(x);
 }
 
@@ -38,15 +32,18 @@ Vec3 parse_vec3(const std::string& flag, const std::string& text) {
     for (std::string part; std::getline(ss, part, ',');)
         parts.push_back(part);
     if (parts.size() != 3 || text.back() == ',')
-        throw Error(flag + ": '" + text + "' is not three numbers x,y,z");
-    return Vec3(parse_float(flag, parts[0]), parse_float(flag, parts[1]),
-                parse_float(flag, parts[2]));
+        throw Error(flag + ": '" + printable(text) + "' is not three numbers x,y,z");
+    // One at a time, so the first bad number is the one named
+    const float x = parse_float(flag, parts[0]);
+    const float y = parse_float(flag, parts[1]);
+    const float z = parse_float(flag, parts[2]);
+    return Vec3(x, y, z);
 }
 
 bool parse_on_off(const std::string& flag, const std::string& text) {
     if (text == "on" || text == "true" || text == "1") return true;
     if (text == "off" || text == "false" || text == "0") return false;
-    throw Error(flag + ": '" + text + "' is neither on nor off");
+    throw Error(flag + ": '" + printable(text) + "' is neither on nor off");
 }
 
 }  // namespace
@@ -57,7 +54,7 @@ std::string options_help() {
   --eye X,Y,Z           eye point (default: the scene's view)
   --lookat X,Y,Z        look-at point
   --up X,Y,Z            up direction (must not be parallel to lookat - eye)
-  --fov DEGREES         vertical field of view in (0, 180); camera constant d = 1/(2 tan(fov/2))
+  --fov DEGREES         vertical field of view in [0.1, 179.9]; d = 1/(2 tan(fov/2))
   --light X,Y,Z:R,G,B   point light at X,Y,Z with intensity R,G,B [W/sr]; repeatable;
                         replaces the scene's lights
   --ambient A           constant indirect light, times rho (the COMS30115 lab's 0.5
@@ -92,25 +89,27 @@ Options parse_options(int argc, const char* const* argv, bool allow_extra) {
             o.scene = value();
         } else if (flag == "--eye") {
             o.eye = parse_vec3(flag, value());
+            check_point(*o.eye, flag);
         } else if (flag == "--lookat") {
             o.lookat = parse_vec3(flag, value());
+            check_point(*o.lookat, flag);
         } else if (flag == "--up") {
             o.up = parse_vec3(flag, value());
+            check_point(*o.up, flag);
         } else if (flag == "--fov") {
             o.fov = parse_float(flag, value());
-            if (!(*o.fov > 0.0f && *o.fov < 180.0f))
-                throw Error("--fov: " + std::to_string(*o.fov) +
-                            " is outside (0, 180) degrees");
+            check_fov(*o.fov, flag);
         } else if (flag == "--light") {
             const std::string text = value();
             const size_t colon = text.find(':');
             if (colon == std::string::npos)
-                throw Error("--light: '" + text + "' is not X,Y,Z:R,G,B");
+                throw Error("--light: '" + printable(text) + "' is not X,Y,Z:R,G,B");
             o.lights.push_back(PointLight{parse_vec3(flag, text.substr(0, colon)),
                                           parse_vec3(flag, text.substr(colon + 1))});
+            check_light(o.lights.back(), flag);
         } else if (flag == "--ambient") {
             o.ambient = parse_float(flag, value());
-            if (*o.ambient < 0.0f) throw Error("--ambient: must not be negative");
+            check_ambient(*o.ambient, flag);
         } else if (flag == "--width") {
             o.settings.width = parse_int(flag, value());
         } else if (flag == "--height") {
@@ -121,10 +120,12 @@ Options parse_options(int argc, const char* const* argv, bool allow_extra) {
             o.settings.shadows = parse_on_off(flag, value());
         } else if (flag == "--exposure") {
             o.exposure = parse_float(flag, value());
+            check_exposure(o.exposure, flag);
         } else if (flag == "--threads") {
             o.settings.threads = parse_int(flag, value());
         } else if (flag == "--output" || flag == "-o") {
             o.output = value();
+            check_output_path(o.output, OutputKind::image, flag);
         } else if (flag == "--repeat") {
             o.repeat = parse_int(flag, value());
             if (o.repeat < 1 || o.repeat > 1000)
@@ -138,7 +139,7 @@ Options parse_options(int argc, const char* const* argv, bool allow_extra) {
             if (k + 1 < argc && std::string(argv[k + 1]).rfind("--", 0) != 0)
                 o.extra.push_back(argv[++k]);
         } else {
-            throw Error("unknown option '" + flag + "' (see --help)");
+            throw Error("unknown option '" + printable(flag) + "' (see --help)");
         }
     }
     validate(o.settings);
@@ -153,15 +154,15 @@ Options parse_options(int argc, const char* const* argv, bool allow_extra) {
     return o;
 }
 
-Scene make_scene(const Options& o) {
-    Scene scene = load_scene(o.scene);
+Scene make_scene(const Options& o, const LoadProgress& progress) {
+    Scene scene = load_scene(o.scene, progress);
     if (o.eye) scene.view.eye = *o.eye;
     if (o.lookat) scene.view.lookat = *o.lookat;
     if (o.up) scene.view.up = *o.up;
     if (o.fov) scene.view.fov = *o.fov;
     if (!o.lights.empty()) scene.lights = o.lights;
     if (o.ambient) scene.ambient = *o.ambient;
-    validate(scene.view);
+    check_view(scene.view, "camera");
     return scene;
 }
 

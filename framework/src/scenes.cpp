@@ -2,6 +2,7 @@
 #include "raylab/scenes.h"
 
 #include "raylab/error.h"
+#include "raylab/input_file.h"
 
 namespace raylab {
 
@@ -126,14 +127,14 @@ std::vector<std::string> builtin_scene_names() {
     return {"cornell", "dtu"};
 }
 
-Scene load_scene(const std::string& name_or_path) {
+Scene load_scene(const std::string& name_or_path, const LoadProgress& progress) {
     if (name_or_path == "cornell") return cornell_box();
     if (name_or_path == "dtu") return dtu_scene();
     const std::string& p = name_or_path;
     const bool obj = p.size() > 4 && (p.compare(p.size() - 4, 4, ".obj") == 0 ||
                                       p.compare(p.size() - 4, 4, ".OBJ") == 0);
-    if (obj) return load_obj(p);
-    throw Error("unknown scene '" + p + "' (cornell, dtu, or a .obj file)");
+    if (obj) return load_obj(p, progress);
+    throw Error("unknown scene '" + printable(p) + "' (cornell, dtu, or a .obj file)");
 }
 
 }  // namespace raylab

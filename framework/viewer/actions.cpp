@@ -7,6 +7,8 @@
 #include <cstdio>
 
 #include "raylab/error.h"
+#include "raylab/input_checks.h"
+#include "raylab/input_file.h"
 #include "raylab/scenes.h"
 #include "view_file.h"
 
@@ -18,28 +20,6 @@ std::string fmt(const char* format, double a, double b = 0.0, double c = 0.0) {
     char text[256];
     std::snprintf(text, sizeof text, format, a, b, c);
     return text;
-}
-
-std::string scene_summary(const Scene& s) {
-    return s.name + ": " + std::to_string(s.triangles.size()) + " triangles, " +
-           std::to_string(s.spheres.size()) + " spheres, " +
-           std::to_string(s.planes.size()) + " planes, " +
-           std::to_string(s.lights.size()) + " lights";
-}
-
-void set_scene(Viewer& v, Scene scene, const std::string& source) {
-    ViewerState& s = v.state;
-    s.scene = std::move(scene);
-    s.scene_source = source;
-    ++s.scene_version;
-    s.view = s.scene.view;
-    s.selected_light = 0;
-    s.dirty = true;
-    v.panel.view_edit = s.view;
-    v.panel.view_error.clear();
-    v.panel.error.clear();
-    v.inspector.pinned = false;
-    v.log.add("scene " + scene_summary(s.scene));
 }
 
 }  // namespace
@@ -55,40 +35,6 @@ int preview_factor(double full_ms) {
     return std::clamp(static_cast<int>(std::ceil(std::sqrt(full_ms / 25.0))), 2, 8);
 }
 
-void init_viewer(Viewer& v, const Options& options, const ViewerOptions& viewer_options,
-                 std::function<void()> wake) {
-    v.options = viewer_options;
-    ViewerState& s = v.state;
-    s.scene = make_scene(options);
-    s.scene_source = options.scene;
-    s.view = s.scene.view;
-    s.settings = options.settings;
-    s.exposure = options.exposure;
-    s.modules = options.modules;
-    s.stubs = detect_stubs();  // before the worker runs student code
-    s.image_scale = viewer_options.image_scale;
-    if (viewer_options.compare && !reference_available())
-        throw Error("--compare needs the reference solutions, and this build has none");
-    s.compare = viewer_options.compare;
-    if (!viewer_options.load_view.empty()) {
-        const ViewFile file = load_view_file(viewer_options.load_view);
-        s.view = file.view;
-        s.scene.lights = file.lights;
-    }
-    v.panel.view_edit = s.view;
-    v.panel.size_edit[0] = s.settings.width;
-    v.panel.size_edit[1] = s.settings.height;
-    v.panel.report_dir = default_report_dir();
-    for (size_t k = 0; k < builtin_scene_names().size(); ++k) {
-        if (builtin_scene_names()[k] == options.scene) v.panel.scene_choice = int(k);
-    }
-    v.grading_binary = find_grading_binary(v.exe_path);
-    v.log.add("scene " + scene_summary(s.scene));
-    v.log.add("modules: " + describe(s.modules));
-    v.worker = std::make_unique<RenderWorker>(wake);
-    v.grading = std::make_unique<GradingRun>(wake);
-}
-
 void report_error(Viewer& v, const std::string& message) {
     v.panel.error = message;
     v.log.add("error: " + message);
@@ -97,7 +43,7 @@ void report_error(Viewer& v, const std::string& message) {
 
 bool apply_view(Viewer& v, const View& view) {
     try {
-        validate(view);
+        check_view(view, "camera");
     } catch (const Error& e) {
         v.panel.view_error = std::string("not applied: ") + e.what();
         return false;
@@ -106,34 +52,6 @@ bool apply_view(Viewer& v, const View& view) {
     v.state.view = view;
     v.state.dirty = true;
     return true;
-}
-
-void start_loading_scene(Viewer& v, const std::string& source) {
-    if (v.loading.valid()) {
-        report_error(v,
-                     "still loading " + v.loading_source + "; try again when it is done");
-        return;
-    }
-    const auto& names = builtin_scene_names();
-    if (std::find(names.begin(), names.end(), source) != names.end()) {
-        set_scene(v, load_scene(source), source);
-        return;
-    }
-    v.log.add("loading " + source + " ...");
-    v.loading_source = source;
-    v.loading = std::async(std::launch::async, [source] { return load_scene(source); });
-}
-
-void finish_loading(Viewer& v) {
-    if (!v.loading.valid() ||
-        v.loading.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
-        return;
-    try {
-        set_scene(v, v.loading.get(), v.loading_source);
-    } catch (const std::exception& e) {
-        report_error(
-            v, std::string(e.what()) + " (still showing " + v.state.scene_source + ")");
-    }
 }
 
 bool load_view(Viewer& v, const std::string& path) {

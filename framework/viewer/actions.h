@@ -29,7 +29,13 @@ bool apply_view(Viewer& v, const View& view);
 /// Built-in scenes load at once; an OBJ loads in the background (finish_loading picks
 /// it up). A scene that fails to load leaves the current one running.
 void start_loading_scene(Viewer& v, const std::string& source);
-void finish_loading(Viewer& v);
+/// Takes a finished load. False when the command line's scene failed to load in a
+/// scripted run (--frames): the viewer then exits with code 2.
+bool finish_loading(Viewer& v);
+/// "loading FILE: stage 45%" while a load runs, else empty.
+std::string loading_text(const Viewer& v);
+/// Asks the running load to stop (it throws LoadCancelled soon after).
+void cancel_loading(Viewer& v);
 
 /// Files. Each reports its own errors and returns false on failure.
 bool load_view(Viewer& v, const std::string& path);

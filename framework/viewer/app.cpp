@@ -8,7 +8,10 @@
 #include <imgui.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "actions.h"
@@ -164,6 +167,25 @@ bool setup_window(Viewer& v) {
     return true;
 }
 
+// A progress bar over the image while a scene loads in the background; Cancel stops it
+void draw_loading(Viewer& v) {
+    if (!v.loading.valid() || !v.load_status) return;
+    const ImVec2 size = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(size.x * 0.5f, size.y * 0.5f), ImGuiCond_Always,
+                            ImVec2(0.5f, 0.5f));
+    ImGui::SetNextWindowSize(ImVec2(std::min(420.0f, size.x * 0.8f), 0.0f));
+    ImGui::Begin("Loading", nullptr,
+                 ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoResize |
+                     ImGuiWindowFlags_NoSavedSettings);
+    ImGui::TextWrapped("%s", v.loading_source.c_str());
+    char label[64];
+    std::snprintf(label, sizeof label, "%s %.0f%%", v.load_status->stage.load(),
+                  100.0 * v.load_status->fraction.load());
+    ImGui::ProgressBar(v.load_status->fraction.load(), ImVec2(-1.0f, 0.0f), label);
+    if (ImGui::Button("Cancel")) cancel_loading(v);
+    ImGui::End();
+}
+
 // Cleanup: stop the threads (they post GLFW events) before GLFW goes
 void cleanup(Viewer& v) {
     delete_texture(v.texture);
@@ -192,7 +214,10 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
     while (!glfwWindowShouldClose(v->window) && !v->quit) {
         wait_for_events(*v);
         if (v->quit) break;
-        finish_loading(*v);
+        if (!finish_loading(*v)) {
+            exit_code = 2;
+            v->quit = true;
+        }
         poll_grading(*v);
         take_result(*v);
 
@@ -205,6 +230,7 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
         last_time = now;
         draw_panel(*v);
         draw_image(*v);
+        draw_loading(*v);
         update_probes(*v);
 
         // A drag ended: replace the coarse preview with the full image
@@ -225,8 +251,17 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
         glfwSwapBuffers(v->window);
     }
     const int exit_status = exit_actions(*v);
+    const int code = exit_code != 0 ? exit_code : exit_status;
+    // A load still running (tinyobjloader's parse and the BVH build cannot stop midway):
+    // ask it to stop, and do not wait long for it, so Ctrl+Q always exits
+    cancel_loading(*v);
+    if (v->loading.valid() && v->loading.wait_for(std::chrono::milliseconds(500)) !=
+                                  std::future_status::ready) {
+        std::fflush(nullptr);
+        std::_Exit(code);
+    }
     cleanup(*v);
-    return exit_code != 0 ? exit_code : exit_status;
+    return code;
 }
 
 }  // namespace raylab::viewer

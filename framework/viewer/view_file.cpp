@@ -1,14 +1,12 @@
 // View files (viewer/view_file.h).
 #include "view_file.h"
 
-#include <cerrno>
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <fstream>
-#include <sstream>
 
 #include "raylab/error.h"
+#include "raylab/input_checks.h"
+#include "raylab/input_file.h"
 
 namespace raylab::viewer {
 
@@ -32,21 +30,19 @@ std::string triple(const Vec3& v) {
     return format_vec3(v, " ");
 }
 
-// Reads one line's numbers after the keyword; exactly count of them, all finite
-std::vector<float> numbers(std::istringstream& words, size_t count,
-                           const std::string& where, const std::string& keyword) {
-    std::vector<float> xs;
-    for (std::string word; words >> word;) {
-        errno = 0;
-        char* end = nullptr;
-        const float x = std::strtof(word.c_str(), &end);
-        if (*end != '\0' || errno == ERANGE || !std::isfinite(x))
-            throw Error(where + "'" + word + "' is not a finite number");
-        xs.push_back(x);
+// One line's numbers after the keyword: exactly as many as names, each strictly parsed
+std::vector<float> numbers(const std::vector<std::string_view>& words,
+                           const std::vector<const char*>& names, const std::string& at) {
+    if (words.size() - 1 != names.size()) {
+        throw Error(at + "'" + std::string(words[0]) + "' needs " +
+                    std::to_string(names.size()) + " numbers, found " +
+                    std::to_string(words.size() - 1));
     }
-    if (xs.size() != count) {
-        throw Error(where + "'" + keyword + "' needs " + std::to_string(count) +
-                    " numbers, found " + std::to_string(xs.size()));
+    std::vector<float> xs(names.size());
+    for (size_t k = 0; k < names.size(); ++k) {
+        if (!parse_real(words[k + 1], xs[k]))
+            throw Error(at + names[k] + ": '" + printable(words[k + 1], 40) +
+                        "' is not a finite number");
     }
     return xs;
 }
@@ -69,34 +65,35 @@ ViewFile parse_view_file(const std::string& text, const std::string& source) {
     ViewFile file;
     bool seen[4] = {false, false, false, false};  // eye, lookat, up, fov
     const char* keys[4] = {"eye", "lookat", "up", "fov"};
-    std::istringstream lines(text);
-    int line_number = 0;
-    for (std::string line; std::getline(lines, line);) {
-        ++line_number;
-        const std::string where = source + ":" + std::to_string(line_number) + ": ";
-        if (const size_t hash = line.find('#'); hash != std::string::npos)
-            line.erase(hash);
-        std::istringstream words(line);
-        std::string keyword;
-        if (!(words >> keyword)) continue;  // blank or comment
+    const std::vector<const char*> xyz = {"x", "y", "z"};
+    const std::vector<const char*> light = {"x", "y", "z", "red", "green", "blue"};
+    const std::vector<std::string_view> lines = split_lines(text, kMaxLine, source);
+    for (size_t n = 0; n < lines.size(); ++n) {
+        const std::string at = where(source, n + 1);
+        std::string_view line = lines[n];
+        if (const size_t hash = line.find('#'); hash != std::string_view::npos)
+            line = line.substr(0, hash);
+        const std::vector<std::string_view> words = split_words(line);
+        if (words.empty()) continue;  // blank or comment
+        const std::string_view keyword = words[0];
         if (keyword == "light") {
-            const std::vector<float> x = numbers(words, 6, where, keyword);
-            if (x[3] < 0.0f || x[4] < 0.0f || x[5] < 0.0f)
-                throw Error(where + "light intensity must not be negative");
+            const std::vector<float> x = numbers(words, light, at);
             file.lights.push_back(
                 PointLight{Vec3(x[0], x[1], x[2]), Vec3(x[3], x[4], x[5])});
+            check_light(file.lights.back(), at + "light");
             continue;
         }
         int k = 0;
         while (k < 4 && keyword != keys[k])
             ++k;
         if (k == 4) {
-            throw Error(where + "unknown keyword '" + keyword +
+            throw Error(at + "unknown keyword '" + printable(keyword, 40) +
                         "' (eye, lookat, up, fov, light)");
         }
-        if (seen[k]) throw Error(where + "'" + keyword + "' appears twice");
+        if (seen[k]) throw Error(at + "'" + keys[k] + "' appears twice");
         seen[k] = true;
-        const std::vector<float> x = numbers(words, k == 3 ? 1 : 3, where, keyword);
+        const std::vector<float> x =
+            numbers(words, k == 3 ? std::vector<const char*>{"degrees"} : xyz, at);
         if (k == 3) {
             file.view.fov = x[0];
         } else {
@@ -107,27 +104,20 @@ ViewFile parse_view_file(const std::string& text, const std::string& source) {
     for (int k = 0; k < 4; ++k) {
         if (!seen[k]) throw Error(source + ": missing the '" + keys[k] + "' line");
     }
-    try {
-        validate(file.view);
-    } catch (const Error& e) {
-        throw Error(source + ": " + e.what());
-    }
+    check_view(file.view, source);
     return file;
 }
 
 void save_view_file(const std::string& path, const View& view,
                     const std::vector<PointLight>& lights) {
+    check_output_path(path, OutputKind::text, "view file");
     std::ofstream out(path);
     out << format_view_file(view, lights);
-    if (!out.flush()) throw Error(path + ": cannot write the view file");
+    if (!out.flush()) throw Error(printable(path) + ": cannot write the view file");
 }
 
 ViewFile load_view_file(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw Error(path + ": cannot open the view file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parse_view_file(text.str(), path);
+    return parse_view_file(read_input_file(path, kMaxViewBytes), printable(path));
 }
 
 }  // namespace raylab::viewer

@@ -7,7 +7,9 @@
 // (actions.cpp).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
+#include <functional>
 #include <future>
 #include <memory>
 #include <optional>
@@ -19,6 +21,7 @@
 #include "raylab/renderer.h"
 #include "raylab/scene.h"
 #include "render_worker.h"
+#include "view_file.h"
 #include "viewer_options.h"
 
 struct GLFWwindow;
@@ -111,6 +114,16 @@ struct ImageRect {
     float x = 0, y = 0, width = 0, height = 0;
 };
 
+/// Progress of the scene loading in the background: written by the loading thread, read
+/// by the UI thread (actions.cpp)
+struct LoadStatus {
+    std::atomic<const char*> stage{"reading"};
+    std::atomic<float> fraction{0.0f};
+    std::atomic<bool> cancel{false};
+    bool initial = false;  ///< the --scene of the command line (errors end scripted runs)
+    std::optional<ViewFile> view;  ///< --load-view, applied when the scene is in
+};
+
 struct Viewer {
     GLFWwindow* window = nullptr;
     std::string exe_path;  ///< /proc/self/exe, to find the graders
@@ -128,8 +141,10 @@ struct Viewer {
     bool grading_logged = true;  ///< the last run's results are in the log
     std::future<Scene> loading;  ///< an OBJ being loaded in the background
     std::string loading_source;
-    unsigned texture = 0;   ///< GL texture of the shown image or heat map
-    int texture_width = 0;  ///< 0: nothing uploaded yet
+    std::shared_ptr<LoadStatus> load_status;  ///< the progress of loading
+    std::function<void()> wake;  ///< wakes the UI thread (posts an empty GLFW event)
+    unsigned texture = 0;        ///< GL texture of the shown image or heat map
+    int texture_width = 0;       ///< 0: nothing uploaded yet
     int texture_height = 0;
     bool texture_is_heat = false;  ///< the texture shows the difference heat map
     float panel_width = 430.0f;

@@ -1,9 +1,9 @@
 // The viewer's own flags (viewer/viewer_options.h).
 #include "viewer_options.h"
 
-#include <cstdlib>
-
 #include "raylab/error.h"
+#include "raylab/input_checks.h"
+#include "raylab/input_file.h"
 
 namespace raylab::viewer {
 
@@ -14,10 +14,9 @@ bool is_flag(const std::string& word) {
 }
 
 int parse_count(const std::string& flag, const std::string& text, int lo, int hi) {
-    char* end = nullptr;
-    const long x = std::strtol(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0' || x < lo || x > hi) {
-        throw Error(flag + ": '" + text + "' is not a whole number in " +
+    long long x = 0;
+    if (!parse_whole(text, lo, hi, x)) {
+        throw Error(flag + ": '" + printable(text) + "' is not a whole number in " +
                     std::to_string(lo) + ".." + std::to_string(hi));
     }
     return static_cast<int>(x);
@@ -25,7 +24,8 @@ int parse_count(const std::string& flag, const std::string& text, int lo, int hi
 
 void parse_window(const std::string& text, ViewerOptions& o) {
     const size_t x = text.find('x');
-    if (x == std::string::npos) throw Error("--window: '" + text + "' is not WxH");
+    if (x == std::string::npos)
+        throw Error("--window: '" + printable(text) + "' is not WxH");
     o.window_width = parse_count("--window", text.substr(0, x), 320, 8192);
     o.window_height = parse_count("--window", text.substr(x + 1), 240, 8192);
 }
@@ -43,20 +43,25 @@ ViewerOptions parse_viewer_options(const std::vector<std::string>& extra) {
         };
         const auto no_value = [&]() {
             if (has_value)
-                throw Error(flag + " takes no value, got '" + extra[k + 1] + "'");
+                throw Error(flag + " takes no value, got '" + printable(extra[k + 1]) +
+                            "'");
         };
         if (flag == "--frames") {
             o.frames = parse_count(flag, value(), 1, 1000000);
         } else if (flag == "--screenshot") {
             o.screenshot = value();
+            check_output_path(o.screenshot, OutputKind::png, flag);
         } else if (flag == "--save-image") {
             o.save_image = value();
+            check_output_path(o.save_image, OutputKind::image, flag);
         } else if (flag == "--save-view") {
             o.save_view = value();
+            check_output_path(o.save_view, OutputKind::text, flag);
         } else if (flag == "--load-view") {
             o.load_view = value();
         } else if (flag == "--report") {
             o.report = value();
+            check_output_path(o.report, OutputKind::folder, flag);
         } else if (flag == "--window") {
             parse_window(value(), o);
         } else if (flag == "--image-scale") {
@@ -68,7 +73,7 @@ ViewerOptions parse_viewer_options(const std::vector<std::string>& extra) {
             no_value();
             o.run_tests = true;
         } else {
-            throw Error("unknown option '" + flag + "' (see --help)");
+            throw Error("unknown option '" + printable(flag) + "' (see --help)");
         }
     }
     if (!o.screenshot.empty() && o.frames == 0) o.frames = 3;

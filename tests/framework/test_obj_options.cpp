@@ -58,10 +58,11 @@ TEST_SUITE("obj") {
         const TempFile empty("raylab-test-empty.obj", "# nothing\nv 0 0 0\n");
         CHECK_THROWS_WITH_AS(load_obj(empty.path), doctest::Contains("holds no faces"),
                              Error);
-        // 1e40 overflows float (tinyobjloader reads a literal "nan" as 0)
+        // 1e40 overflows float (and a literal "nan" is refused as well)
         const TempFile nan("raylab-test-nan.obj",
                            "v 1e40 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-        CHECK_THROWS_WITH_AS(load_obj(nan.path), doctest::Contains("non-finite"), Error);
+        CHECK_THROWS_WITH_AS(load_obj(nan.path),
+                             doctest::Contains("is not a finite number"), Error);
         const TempFile garbage("raylab-test-garbage.obj",
                                std::string("\x01\x02\xff garbage", 11));
         CHECK_THROWS_AS(load_obj(garbage.path), Error);
@@ -92,8 +93,8 @@ TEST_SUITE("options") {
 
     TEST_CASE("bad values name the flag and the problem") {
         const std::vector<std::pair<std::vector<const char*>, const char*>> cases = {
-            {{"--fov", "0"}, "outside (0, 180)"},
-            {{"--fov", "180"}, "outside (0, 180)"},
+            {{"--fov", "0"}, "outside [0.1, 179.9]"},
+            {{"--fov", "180"}, "outside [0.1, 179.9]"},
             {{"--fov", "nan"}, "not a finite number"},
             {{"--eye", "1,2"}, "not three numbers"},
             {{"--eye", "1,2,inf"}, "not a finite number"},

@@ -57,14 +57,14 @@ TEST_SUITE("viewer") {
         CHECK(view_error("# comment\neye 0 0\nlookat 0 0 0\nup 0 1 0\nfov 50\n") ==
               "v.txt:2: 'eye' needs 3 numbers, found 2");
         CHECK(view_error("eye 0 0 3\nlookat 0 x 0\n") ==
-              "v.txt:2: 'x' is not a finite number");
+              "v.txt:2: y: 'x' is not a finite number");
         CHECK(view_error("eye 0 0 3\nlookat 0 inf 0\n") ==
-              "v.txt:2: 'inf' is not a finite number");
+              "v.txt:2: y: 'inf' is not a finite number");
         CHECK(view_error(kGoodView + "zoom 2\n") ==
               "v.txt:5: unknown keyword 'zoom' (eye, lookat, up, fov, light)");
         CHECK(view_error(kGoodView + "fov 40\n") == "v.txt:5: 'fov' appears twice");
         CHECK(view_error(kGoodView + "light 0 1 0  1 -1 1\n") ==
-              "v.txt:5: light intensity must not be negative");
+              "v.txt:5: light: intensity (1, -1, 1) must not be negative");
         CHECK(view_error(kGoodView + "light 0 1 0  1 1\n") ==
               "v.txt:5: 'light' needs 6 numbers, found 5");
         CHECK(view_error("eye 0 0 3\nlookat 0 0 0\nup 0 1 0\n") ==
@@ -78,8 +78,9 @@ TEST_SUITE("viewer") {
     }
 
     TEST_CASE("a view file that does not exist is named in the error") {
-        CHECK_THROWS_WITH_AS(load_view_file("/no/such/view.txt"),
-                             "/no/such/view.txt: cannot open the view file", Error);
+        CHECK_THROWS_WITH_AS(
+            load_view_file("/no/such/view.txt"),
+            "/no/such/view.txt: cannot open file (No such file or directory)", Error);
     }
 
     TEST_CASE(

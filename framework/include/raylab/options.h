@@ -8,6 +8,7 @@
 #include "raylab/modules.h"
 #include "raylab/renderer.h"
 #include "raylab/scene.h"
+#include "raylab/scenes.h"
 
 namespace raylab {
 
@@ -38,7 +39,7 @@ std::string options_help();
 
 /// The scene the options name, with their view, lights and ambient applied and checked.
 /// Throws raylab::Error.
-Scene make_scene(const Options& options);
+Scene make_scene(const Options& options, const LoadProgress& progress = {});
 
 /// Modules whose student code is still a stub: bit k for module k + 1.
 std::uint32_t detect_stubs();

@@ -1,0 +1,189 @@
+// Validated text input (raylab/input_file.h).
+#include "raylab/input_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+#include "raylab/error.h"
+
+namespace raylab {
+
+namespace {
+
+// Closes the descriptor on every path out of read_input_file
+struct Fd {
+    int fd;
+    ~Fd() {
+        if (fd >= 0) ::close(fd);
+    }
+};
+
+std::string describe_type(mode_t mode) {
+    if (S_ISDIR(mode)) return "a folder";
+    if (S_ISFIFO(mode)) return "a FIFO";
+    if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
+    if (S_ISSOCK(mode)) return "a socket";
+    return "not a regular file";
+}
+
+std::string size_text(std::size_t bytes) {
+    if (bytes >= (std::size_t(1) << 20)) return std::to_string(bytes >> 20) + " MiB";
+    return std::to_string(bytes >> 10) + " KiB";
+}
+
+}  // namespace
+
+std::string printable(std::string_view text, std::size_t max_chars) {
+    static const char hex[] = "0123456789abcdef";
+    std::string out;
+    for (const char ch : text) {
+        if (out.size() >= max_chars) {
+            out += "...";
+            break;
+        }
+        const auto c = static_cast<unsigned char>(ch);
+        if (c < 0x20 || c >= 0x7f) {
+            out += "\\x";
+            out += hex[c >> 4];
+            out += hex[c & 15];
+        } else {
+            out += ch;
+        }
+    }
+    return out;
+}
+
+std::string where(const std::string& source, std::size_t line) {
+    return source + ":" + std::to_string(line) + ": ";
+}
+
+namespace {
+
+// Opens path without blocking and checks it: a regular file of at most max_bytes
+int open_checked(const std::string& path, std::size_t max_bytes, struct stat& st) {
+    const std::string name = printable(path);
+    if (path.empty()) throw Error("an empty file name");
+    Fd f{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY)};
+    if (f.fd < 0) throw Error(name + ": cannot open file (" + std::strerror(errno) + ")");
+    if (::fstat(f.fd, &st) != 0)
+        throw Error(name + ": cannot open file (" + std::strerror(errno) + ")");
+    if (!S_ISREG(st.st_mode))
+        throw Error(name + ": " + describe_type(st.st_mode) + ", not a regular file");
+    if (static_cast<unsigned long long>(st.st_size) > max_bytes)
+        throw Error(name + ": " + std::to_string(st.st_size) + " bytes, more than the " +
+                    size_text(max_bytes) + " allowed");
+    const int fd = f.fd;
+    f.fd = -1;
+    return fd;
+}
+
+}  // namespace
+
+void check_input_file(const std::string& path, std::size_t max_bytes) {
+    struct stat st {};
+    const Fd f{open_checked(path, max_bytes, st)};
+}
+
+std::string read_input_file(const std::string& path, std::size_t max_bytes) {
+    const std::string name = printable(path);
+    struct stat st {};
+    const Fd f{open_checked(path, max_bytes, st)};
+    std::string data(static_cast<std::size_t>(st.st_size), '\0');
+    std::size_t got = 0;
+    while (got < data.size()) {
+        const ssize_t n = ::read(f.fd, &data[got], data.size() - got);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) throw Error(name + ": cannot read (" + std::strerror(errno) + ")");
+        if (n == 0) break;  // the file shrank meanwhile
+        got += static_cast<std::size_t>(n);
+    }
+    data.resize(got);
+    return data;
+}
+
+std::vector<std::string_view> split_lines(std::string_view text, std::size_t max_line,
+                                          const std::string& source) {
+    if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+    std::vector<std::string_view> lines;
+    while (!text.empty()) {
+        std::size_t end = text.find('\n');
+        const std::size_t next = end == std::string_view::npos ? text.size() : end + 1;
+        if (end == std::string_view::npos) end = text.size();
+        std::string_view line = text.substr(0, end);
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        if (line.size() > max_line) {
+            throw Error(where(source, lines.size() + 1) + "line longer than " +
+                        std::to_string(max_line) + " bytes");
+        }
+        lines.push_back(line);
+        text.remove_prefix(next);
+    }
+    return lines;
+}
+
+bool parse_real(std::string_view w, float& out) {
+    std::size_t k = 0;
+    if (k < w.size() && (w[k] == '+' || w[k] == '-')) ++k;
+    std::size_t digits = 0;
+    while (k < w.size() && w[k] >= '0' && w[k] <= '9')
+        ++k, ++digits;
+    if (k < w.size() && w[k] == '.') {
+        ++k;
+        while (k < w.size() && w[k] >= '0' && w[k] <= '9')
+            ++k, ++digits;
+    }
+    if (digits == 0) return false;
+    if (k < w.size() && (w[k] == 'e' || w[k] == 'E')) {
+        ++k;
+        if (k < w.size() && (w[k] == '+' || w[k] == '-')) ++k;
+        std::size_t exp_digits = 0;
+        while (k < w.size() && w[k] >= '0' && w[k] <= '9')
+            ++k, ++exp_digits;
+        if (exp_digits == 0) return false;
+    }
+    if (k != w.size() || w.size() > 64) return false;
+    const std::string copy(w);
+    const double x = std::strtod(copy.c_str(), nullptr);
+    if (!std::isfinite(x) || std::fabs(x) > 3.0e38) return false;
+    out = static_cast<float>(x);
+    return true;
+}
+
+bool parse_whole(std::string_view w, long long lo, long long hi, long long& out) {
+    std::size_t k = 0;
+    if (k < w.size() && (w[k] == '+' || w[k] == '-')) ++k;
+    if (k == w.size() || w.size() > 30) return false;
+    for (std::size_t j = k; j < w.size(); ++j)
+        if (w[j] < '0' || w[j] > '9') return false;
+    const std::string copy(w);
+    errno = 0;
+    const long long x = std::strtoll(copy.c_str(), nullptr, 10);
+    if (errno == ERANGE || x < lo || x > hi) {
+        out = x;
+        return false;
+    }
+    out = x;
+    return true;
+}
+
+std::vector<std::string_view> split_words(std::string_view line) {
+    std::vector<std::string_view> words;
+    std::size_t k = 0;
+    while (k < line.size()) {
+        while (k < line.size() && (line[k] == ' ' || line[k] == '\t'))
+            ++k;
+        const std::size_t start = k;
+        while (k < line.size() && line[k] != ' ' && line[k] != '\t')
+            ++k;
+        if (k > start) words.push_back(line.substr(start, k - start));
+    }
+    return words;
+}
+
+}  // namespace raylab
