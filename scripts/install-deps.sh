@@ -3,7 +3,8 @@
 #
 # Usage: scripts/install-deps.sh [--check | --list] [GROUP...]
 #   GROUP    build    compiler and build tools: g++ make cmake ninja-build pkg-config
-#            libs     libraries: GLM, tinyobjloader, stb, doctest, Dear ImGui, GLFW, GL headers
+#            libs     libraries: GLM, tinyobjloader, stb, doctest, Dear ImGui, GLFW, GL headers,
+#                     nlohmann-json, libseccomp and bubblewrap (the grader's sandbox)
 #            gui      running the GUI tests headless: Xvfb, xauth, Mesa, xdotool (alias gui-test)
 #            format   clang-format (the style check of `scripts/dev.sh test`)
 #            fuzz     clang 14 and its runtimes: libFuzzer targets, the stress matrix
