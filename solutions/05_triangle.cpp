@@ -25,7 +25,7 @@ std::optional<Hit> intersect_triangle(const Ray& r, const Vec3& v0, const Vec3& 
     const int kz = aw.x > aw.y ? (aw.x > aw.z ? 0 : 2) : (aw.y > aw.z ? 1 : 2);
     const int kx = kz == 2 ? 0 : kz + 1, ky = kx == 2 ? 0 : kx + 1;
     if (w[kz] == 0.0) return std::nullopt;
-    const double sx = -w[kx] / w[kz], sy = -w[ky] / w[kz], sz = 1.0 / w[kz];
+    const double sz = 1.0 / w[kz], sx = -w[kx] * sz, sy = -w[ky] * sz;
     // Translated, permuted and sheared vertices (x, y); z is scaled later
     const auto transform = [&](const Vec3& v, double& x, double& y, double& z) {
         const DVec3 p(double(v.x) - ox, double(v.y) - oy, double(v.z) - oz);

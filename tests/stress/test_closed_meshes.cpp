@@ -101,7 +101,10 @@ TEST_SUITE("stress closed meshes") {
         const std::pair<const char*, Mesh> meshes[] = {
             {"octahedron", octahedron()}, {"cube", cube()}, {"icosphere", icosphere()}};
         int rays = 0;
-        for (const auto& [name, unit] : meshes) {
+        for (const auto& entry : meshes) {
+            // Not a structured binding: clang 14 cannot capture one in INFO's lambda
+            const char* name = entry.first;
+            const Mesh& unit = entry.second;
             for (const float scale : {0.01f, 1.0f, 10.0f}) {
                 for (const float D : {1.0f, 1e3f, 1e5f}) {
                     const std::uint64_t seed =
