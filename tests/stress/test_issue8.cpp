@@ -107,4 +107,11 @@ TEST_SUITE("stress issue 8") {
             CHECK_THROWS_WITH_AS(scene.commit(), doctest::Contains("sphere 0"), Error);
         }
     }
+
+    TEST_CASE("B6: a nearly parallel ray never hits a plane at t = inf") {
+        const Plane p{Vec3(0.0f, 1.0f, 0.0f), 0.0f};
+        const Ray r{Vec3(0.0f, 1.0f, 0.0f), Vec3(1.0f, -1e-40f, 0.0f), 0.0f, kInfinity};
+        const auto hit = reference::intersect_plane(r, p);
+        CHECK((!hit || std::isfinite(hit->t)));
+    }
 }
