@@ -191,7 +191,7 @@ const std::vector<NamedTriangleKernel>& triangle_kernels() {
         {"Moeller-Trumbore float", &triangle_moeller_trumbore},
         {"Cramer float", &triangle_cramer},
         {"edge functions float", &triangle_edge_float},
-        {"reference (edge fns, double)", &reference::intersect_triangle},
+        {"reference (watertight, double)", &reference::intersect_triangle},
     };
     return kernels;
 }

@@ -15,8 +15,9 @@ std::optional<Hit> intersect_plane(const Ray& r, const Plane& plane) {
     const double dist =
         glm::dot(DVec3(r.o), DVec3(plane.n)) + static_cast<double>(plane.d);
     const float t = static_cast<float>(-dist / static_cast<double>(wn));
-    // Conditional acceptance (tmin <= t <= tmax); also rejects NaN
-    if (!(t >= r.tmin && t <= r.tmax)) return std::nullopt;
+    // Conditional acceptance (tmin <= t <= tmax); also rejects NaN, and t = inf from a
+    // nearly parallel ray (w . n = -1e-40) whose distance overflows float
+    if (!(t >= r.tmin && t <= r.tmax) || std::isinf(t)) return std::nullopt;
     Hit hit;
     hit.t = t;
     hit.position = r.o + t * r.w;

@@ -9,39 +9,70 @@ namespace raylab::reference {
 /// hit.uv = (beta, gamma), hit.n = normalize((v1 - v0) x (v2 - v0)) (counter-clockwise
 /// vertices face the viewer). Both sides are hit. Degenerate triangles are never hit.
 ///
-/// This reference uses edge functions (signed volumes) in double precision rather than
-/// Cramer's rule: each edge's sign is computed from the two vertices of that edge alone,
-/// so a ray through an edge shared by two triangles hits at least one of them
-/// (watertight).
+/// Watertight test after Woop, Benthin and Wald (JCGT 2013), as in pbrt-v4: the vertices
+/// are moved into a frame where the ray is the +z axis (translate to o, permute so the
+/// largest |w| component is z, shear), and the edge functions are 2D cross products of
+/// the transformed vertices. Every triangle sharing a vertex uses the same transformed
+/// vertex, and an edge shared by two triangles gives exactly opposite edge functions, so
+/// a ray through an edge or a vertex always hits one of the triangles around it. The
+/// transform runs in double (o and the vertices are float, so v - o is exact).
 std::optional<Hit> intersect_triangle(const Ray& r, const Vec3& v0, const Vec3& v1,
                                       const Vec3& v2) {
-    // Vertices relative to the ray origin (exact in double for float inputs)
-    const DVec3 o(r.o), w(r.w);
-    const DVec3 a = DVec3(v0) - o, b = DVec3(v1) - o, c = DVec3(v2) - o;
-    // Edge functions: the volume each edge spans with w, proportional to a barycentric
-    // weight
-    const double e0 = glm::dot(glm::cross(b, c), w);  // weight of v0
-    const double e1 = glm::dot(glm::cross(c, a), w);  // weight of v1 (beta)
-    const double e2 = glm::dot(glm::cross(a, b), w);  // weight of v2 (gamma)
-    // Inside when no two edge functions have opposite signs
+    const double ox = r.o.x, oy = r.o.y, oz = r.o.z;
+    const DVec3 w(r.w.x, r.w.y, r.w.z);
+    // Permutation: kz is the axis of the largest |w| component
+    const DVec3 aw = glm::abs(w);
+    const int kz = aw.x > aw.y ? (aw.x > aw.z ? 0 : 2) : (aw.y > aw.z ? 1 : 2);
+    const int kx = kz == 2 ? 0 : kz + 1, ky = kx == 2 ? 0 : kx + 1;
+    if (w[kz] == 0.0) return std::nullopt;
+    const double sz = 1.0 / w[kz], sx = -w[kx] * sz, sy = -w[ky] * sz;
+    // Translated, permuted and sheared vertices (x, y); z is scaled later
+    const auto transform = [&](const Vec3& v, double& x, double& y, double& z) {
+        const DVec3 p(double(v.x) - ox, double(v.y) - oy, double(v.z) - oz);
+        z = p[kz];
+        x = p[kx] + sx * z;
+        y = p[ky] + sy * z;
+    };
+    double x0, y0, z0, x1, y1, z1, x2, y2, z2;
+    transform(v0, x0, y0, z0);
+    transform(v1, x1, y1, z1);
+    transform(v2, x2, y2, z2);
+    // Edge functions: e0 is the weight of v0 (edge v1 v2), e1 of v1, e2 of v2
+    const double e0 = x1 * y2 - y1 * x2;
+    const double e1 = x2 * y0 - y2 * x0;
+    const double e2 = x0 * y1 - y0 * x1;
     if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0)) return std::nullopt;
-    // The weights sum to (v1 - v0) x (v2 - v0) . w: zero for parallel rays and degenerate
-    // triangles
     const double det = e0 + e1 + e2;
     if (det == 0.0) return std::nullopt;
-    // Distance along w to the triangle's plane: t = N . (v0 - o) / N . w. The denominator
-    // is computed from N directly, not as det: the sum of three edge functions carries an
-    // error that grows with the square of the distance from the origin
-    const DVec3 N = glm::cross(b - a, c - a);
-    const double Nw = glm::dot(N, w);
-    if (Nw == 0.0) return std::nullopt;
-    const float t = static_cast<float>(glm::dot(N, a) / Nw);
+    // Scaled distance; t = t_scaled / det
+    z0 *= sz, z1 *= sz, z2 *= sz;
+    const double t_scaled = e0 * z0 + e1 * z1 + e2 * z2;
+    const double inv_det = 1.0 / det;
+    const double td = t_scaled * inv_det;
+    // Conservative t > 0 (pbrt-v4 §6.8.7, with double's gamma): a hit whose t is within
+    // its own rounding error of 0 may lie behind the origin
+    constexpr double u = 0.5 * std::numeric_limits<double>::epsilon();
+    const auto gamma = [](int n) { return n * u / (1 - n * u); };
+    const double max_z = std::max({std::abs(z0), std::abs(z1), std::abs(z2)});
+    const double max_x = std::max({std::abs(x0), std::abs(x1), std::abs(x2)});
+    const double max_y = std::max({std::abs(y0), std::abs(y1), std::abs(y2)});
+    const double dz = gamma(3) * max_z;
+    const double dx = gamma(5) * (max_x + max_z), dy = gamma(5) * (max_y + max_z);
+    const double de = 2 * (gamma(2) * max_x * max_y + dy * max_x + dx * max_y);
+    const double max_e = std::max({std::abs(e0), std::abs(e1), std::abs(e2)});
+    const double dt =
+        3 * (gamma(3) * max_e * max_z + de * max_z + dz * max_e) * std::abs(inv_det);
+    if (!(td > dt)) return std::nullopt;
+    const float t = static_cast<float>(td);
     if (!(t >= r.tmin && t <= r.tmax)) return std::nullopt;
     Hit hit;
     hit.t = t;
     hit.position = r.o + t * r.w;
-    hit.n = Vec3(glm::normalize(N));
-    hit.uv = Vec2(static_cast<float>(e1 / det), static_cast<float>(e2 / det));
+    const DVec3 N = glm::cross(DVec3(v1) - DVec3(v0), DVec3(v2) - DVec3(v0));
+    const double len = glm::length(N);
+    if (!(len > 0.0)) return std::nullopt;
+    hit.n = Vec3(N / len);
+    hit.uv = Vec2(static_cast<float>(e1 * inv_det), static_cast<float>(e2 * inv_det));
     return hit;
 }
 

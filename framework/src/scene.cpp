@@ -15,8 +15,14 @@ std::string str(const Vec3& v) {
     return buf;
 }
 
+// c - r and c + r rounded outwards (one step from the nearest float): the box holds the
+// exact sphere even when it is small and far from the origin (issue 8, B3)
 Aabb sphere_box(const Sphere& s) {
-    return Aabb{s.c - Vec3(s.r), s.c + Vec3(s.r)};
+    const auto down = [](float x) { return std::nextafter(x, -kInfinity); };
+    const auto up = [](float x) { return std::nextafter(x, kInfinity); };
+    const Vec3 lo = s.c - Vec3(s.r), hi = s.c + Vec3(s.r);
+    return Aabb{Vec3(down(lo.x), down(lo.y), down(lo.z)),
+                Vec3(up(hi.x), up(hi.y), up(hi.z))};
 }
 
 Aabb triangle_box(const SceneTriangle& t) {
@@ -95,6 +101,12 @@ void Scene::commit() {
         const std::string what = "sphere " + std::to_string(k);
         if (!is_finite(s.c) || !std::isfinite(s.r) || !(s.r > 0.0f))
             throw Error(what + ": centre must be finite and radius positive");
+        // The sphere test squares r: r^2 must be a finite normal float, and c +- r finite
+        const float r2 = s.r * s.r;
+        if (!std::isfinite(r2) || r2 < std::numeric_limits<float>::min() ||
+            !is_finite(s.c + Vec3(s.r)) || !is_finite(s.c - Vec3(s.r)))
+            throw Error(what + ": radius " + std::to_string(s.r) +
+                        " is outside what float can square (about 1e-19 .. 1e19)");
         check_material(spheres[k].material, what);
         boxes.push_back(sphere_box(s));
     }

@@ -48,17 +48,21 @@ struct RaySlabs {
 inline float box_entry(const RaySlabs& s, const Aabb& box, float tmin, float tmax) {
     const Vec3 t0 = (box.lo - s.o) * s.inv_w;
     const Vec3 t1 = (box.hi - s.o) * s.inv_w;
-    const Vec3 tnear = glm::min(t0, t1), tfar = glm::max(t0, t1);
-    // A ray in a slab's plane gives 0 * inf = NaN, which must not cull: a > b ? a : b
-    // drops a NaN first operand (and compiles to one maxss, unlike std::fmax)
-    const auto max = [](float maybe_nan, float b) {
-        return maybe_nan > b ? maybe_nan : b;
+    // A ray in a slab's plane along a +-0 component gives 0 * inf = NaN: that slab holds
+    // the whole ray, so a NaN on either side makes the axis unconstrained (-inf, +inf).
+    // glm::min/max would return the other operand and cull the box (issue 8, B2)
+    const auto near = [](float a, float b) {
+        return a < b ? a : (b <= a ? b : -kInfinity);
     };
-    const auto min = [](float maybe_nan, float b) {
-        return maybe_nan < b ? maybe_nan : b;
+    const auto far = [](float a, float b) {
+        return a > b ? a : (b >= a ? b : kInfinity);
     };
-    const float t_enter = max(tnear.x, max(tnear.y, max(tnear.z, tmin)));
-    const float t_exit = min(tfar.x, min(tfar.y, min(tfar.z, tmax)));
+    const auto max = [](float a, float b) { return a > b ? a : b; };
+    const auto min = [](float a, float b) { return a < b ? a : b; };
+    const float t_enter =
+        max(near(t0.x, t1.x), max(near(t0.y, t1.y), max(near(t0.z, t1.z), tmin)));
+    const float t_exit =
+        min(far(t0.x, t1.x), min(far(t0.y, t1.y), min(far(t0.z, t1.z), tmax)));
     constexpr float kGrow =
         1.0f + 2.0f * 3.0f * 0.5f * std::numeric_limits<float>::epsilon();
     return t_enter <= t_exit * kGrow ? t_enter : kInfinity;

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# Runs the numerical stress suite (tests/stress) under several compilers and optimisation
+# levels, each in its own build folder, and fails if any configuration fails (issue 8, B7:
+# the same pass/fail with GCC and clang, -O0/-O2/-O3 and -march=native).
+#
+#   scripts/stress-matrix.sh [--quick]     (--quick: g++ -O2 and clang++ -O3 -march=native)
+#
+# Default matrix (6 configurations; only raylab-stress-tests and what it links are built):
+#   g++     -O0, -O2, -O3 -march=native
+#   clang++ -O0, -O2, -O3 -march=native
+# Build folders: build-stress/<compiler>-<flags>. Uses ccache when /work/helper-env.sh or
+# the environment sets it up; RAYLAB_STRESS_JOBS sets the build parallelism (default 2).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+configs=(
+    "g++|-O0"
+    "g++|-O2"
+    "g++|-O3 -march=native"
+    "clang++|-O0"
+    "clang++|-O2"
+    "clang++|-O3 -march=native"
+)
+if [[ "${1:-}" == "--quick" ]]; then
+    configs=("g++|-O2" "clang++|-O3 -march=native")
+fi
+jobs="${RAYLAB_STRESS_JOBS:-2}"
+launcher=()
+if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+
+mkdir -p build-stress
+failed=()
+for config in "${configs[@]}"; do
+    cxx="${config%%|*}"
+    flags="${config#*|}"
+    if ! command -v "$cxx" >/dev/null; then
+        echo "stress-matrix: $cxx not installed" >&2
+        failed+=("$cxx $flags (compiler missing)")
+        continue
+    fi
+    dir="build-stress/${cxx}${flags// /}"
+    echo "== stress suite: $cxx $flags ($dir)"
+    if ! cmake -S . -B "$dir" -G Ninja -DCMAKE_CXX_COMPILER="$cxx" \
+        -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="$flags" "${launcher[@]}" \
+        -DRAYLAB_WITH_GUI=OFF -DRAYLAB_WERROR=ON >"$dir.configure.log" 2>&1 ||
+        ! cmake --build "$dir" -j "$jobs" --target raylab-stress-tests \
+            >"$dir.build.log" 2>&1; then
+        echo "stress-matrix: build failed for $cxx $flags (see $dir.*.log)" >&2
+        failed+=("$cxx $flags (build)")
+        continue
+    fi
+    if ! "$dir/tests/stress/raylab-stress-tests" --no-intro; then
+        failed+=("$cxx $flags")
+    fi
+done
+if ((${#failed[@]})); then
+    printf 'stress-matrix: FAILED: %s\n' "${failed[@]}" >&2
+    exit 1
+fi
+echo "stress-matrix: all ${#configs[@]} configurations pass"
