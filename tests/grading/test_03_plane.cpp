@@ -72,6 +72,9 @@ TEST_SUITE("03_plane") {
         RAYLAB_CHECK(
             !got || (std::isfinite(got->t) && got->t >= r.tmin && got->t <= r.tmax),
             "expected a miss, got " << show(got));
+        // Tilted out of the plane from just above it, the ray hits it
+        check(Ray{Vec3(0, 0.5f, 0), Vec3(0.6f, -0.8f, 0)}, kFloor,
+              make_hit(0.625f, Vec3(0.375f, 0, 0), Vec3(0, 1, 0)));
     }
 
     TEST_CASE("the normal is the plane's n whichever side the ray comes from") {
