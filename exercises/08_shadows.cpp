@@ -20,8 +20,9 @@ bool in_shadow(const Occluder& scene, const Vec3& x, const Vec3& n,
     //   surface: scale = largest |coordinate| of x, eps, side = n or -n (the one with
     //   side . wi >= 0), o = x + eps side
     // TODO(student) 08_shadows: Segment to the light, stopping short of it:
-    //   shadow_ray{o, wi, 0, (distance from o to the light) - eps};
-    //   return scene.occluded(shadow_ray)
+    //   shadow_ray{o, wi, eps, (distance from o to the light) - eps} (tmin = eps, not 0:
+    //   at an inside corner o lies in the neighbouring face's plane, which blocks at t =
+    //   0) return scene.occluded(shadow_ray)
     RAYLAB_STUB("08_shadows");
     (void)scene, (void)x, (void)n, (void)sample;
     return false;

@@ -86,23 +86,29 @@ double scale_of(std::initializer_list<Vec3> points, double t) {
 std::string diff_hit(const std::optional<Hit>& got, const std::optional<Hit>& want,
                      double scale, bool check_uv) {
     if (!want && !got) return "";
+    if (got && !(std::isfinite(got->t) && std::isfinite(got->position.x) &&
+                 std::isfinite(got->position.y) && std::isfinite(got->position.z)))
+        return "expected " + show(want) +
+               ", got a hit with a non-finite t or position: " + show(got);
     if (!want || !got) return "expected " + show(want) + ", got " + show(got);
     std::string why;
+    const std::string within = " (tolerance " + show(tol::kDistance * scale) + ")";
     const auto add = [&](const std::string& what) {
         why += (why.empty() ? "" : "; ") + what;
     };
     if (!(std::abs(double(got->t) - want->t) <= tol::kDistance * scale))
-        add("t: expected " + show(want->t) + ", got " + show(got->t));
+        add("t: expected " + show(want->t) + ", got " + show(got->t) + within);
     if (!close_abs(got->position, want->position, tol::kDistance * scale))
         add("position: expected " + show(want->position) + ", got " +
-            show(got->position));
+            show(got->position) + within);
     if (!close_abs(got->n, want->n, tol::kNormal))
-        add("n: expected " + show(want->n) + ", got " + show(got->n));
+        add("n: expected " + show(want->n) + ", got " + show(got->n) + " (tolerance " +
+            show(tol::kNormal) + ")");
     if (check_uv) {
         const Vec3 g(got->uv, 0.0f), w(want->uv, 0.0f);
         if (!close_abs(g, w, tol::kBarycentric))
             add("uv (beta, gamma): expected " + show(want->uv) + ", got " +
-                show(got->uv));
+                show(got->uv) + " (tolerance " + show(tol::kBarycentric) + ")");
     }
     return why;
 }
@@ -110,14 +116,16 @@ std::string diff_hit(const std::optional<Hit>& got, const std::optional<Hit>& wa
 std::string diff_vec(const char* name, const Vec3& got, const Vec3& want,
                      double tolerance) {
     if (close_abs(got, want, tolerance)) return "";
-    return std::string(name) + ": expected " + show(want) + ", got " + show(got);
+    return std::string(name) + ": expected " + show(want) + ", got " + show(got) +
+           " (tolerance " + show(tolerance) + ")";
 }
 
 std::string diff_radiance(const char* name, const Vec3& got, const Vec3& want) {
     for (int k = 0; k < 3; ++k) {
         const double g = got[k], w = want[k];
         if (!(std::abs(g - w) <= tol::kRadiance * std::abs(w) + 1e-7))
-            return std::string(name) + ": expected " + show(want) + ", got " + show(got);
+            return std::string(name) + ": expected " + show(want) + ", got " + show(got) +
+                   " (relative tolerance " + show(tol::kRadiance) + " per channel)";
     }
     return "";
 }

@@ -45,11 +45,22 @@ TEST_SUITE("03_plane") {
     TEST_CASE("a plane behind the ray's origin is not hit") {
         // Pointing up, away from the floor: t = -2 < tmin = 0
         check(Ray{Vec3(0, 2, 0), Vec3(0, 1, 0)}, kFloor, std::nullopt);
+        // and the same ray turned round hits it
+        check(Ray{Vec3(0, 2, 0), Vec3(0, -1, 0)}, kFloor,
+              make_hit(2.0f, Vec3(0.0f), Vec3(0, 1, 0)));
     }
 
-    TEST_CASE("a ray parallel to the plane misses it") {
-        // w . n = 0: no t solves the equation
+    TEST_CASE("a ray parallel to the plane misses it, from either side") {
+        // w . n = 0: no t solves the equation. Above the floor t = -1 / 0 = -inf, below
+        // it t = +inf, which a test t >= tmin && t <= tmax with tmax = inf accepts. The
+        // same rays tilted towards the floor hit it (a module that never hits earns
+        // nothing)
         check(Ray{Vec3(0, 1, 0), Vec3(1, 0, 0)}, kFloor, std::nullopt);
+        check(Ray{Vec3(0, -1, 0), Vec3(1, 0, 0)}, kFloor, std::nullopt);
+        check(Ray{Vec3(0, 1, 0), Vec3(0.6f, -0.8f, 0)}, kFloor,
+              make_hit(1.25f, Vec3(0.75f, 0, 0), Vec3(0, 1, 0)));
+        check(Ray{Vec3(0, -1, 0), Vec3(0.6f, 0.8f, 0)}, kFloor,
+              make_hit(1.25f, Vec3(0.75f, 0, 0), Vec3(0, 1, 0)));
     }
 
     TEST_CASE("a ray inside the plane and parallel to it gives no NaN distance") {
@@ -61,6 +72,9 @@ TEST_SUITE("03_plane") {
         RAYLAB_CHECK(
             !got || (std::isfinite(got->t) && got->t >= r.tmin && got->t <= r.tmax),
             "expected a miss, got " << show(got));
+        // Tilted out of the plane from just above it, the ray hits it
+        check(Ray{Vec3(0, 0.5f, 0), Vec3(0.6f, -0.8f, 0)}, kFloor,
+              make_hit(0.625f, Vec3(0.375f, 0, 0), Vec3(0, 1, 0)));
     }
 
     TEST_CASE("the normal is the plane's n whichever side the ray comes from") {

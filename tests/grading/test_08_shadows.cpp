@@ -7,7 +7,9 @@
 // The scenes here are fakes of the Occluder interface that record every ray they are
 // asked about: small balls on or off the segment, and the surface x lies on. Any correct
 // shadow ray passes: offset origin or tmin, cast from x or from the light, any reasonable
-// epsilon (up to about 0.01 near the origin).
+// epsilon (up to 0.01 near the origin, growing with |x|). Every case that expects "lit"
+// also expects "in shadow" once a blocker is put on the segment, so a constant answer
+// earns nothing.
 #include <vector>
 
 #include "grading.h"
@@ -30,6 +32,11 @@ class FakeScene : public Occluder {
     std::vector<Ball> balls;
     bool has_surface = false;
     Vec3 surface_point{0.0f}, surface_n{0.0f};  ///< the plane (p - point) . n = 0
+    struct Plane {
+        Vec3 point, n;
+        double touch;  ///< a segment ending within this distance of the plane meets it
+    };
+    std::vector<Plane> planes;  ///< other surfaces: a wall at a corner, a ceiling
     mutable std::vector<Ray> rays;
 
     bool occluded(const Ray& r) const override {
@@ -37,7 +44,10 @@ class FakeScene : public Occluder {
         for (const Ball& ball : balls) {
             if (segment_distance(r, ball.b) <= ball.rho) return true;
         }
-        return has_surface && crosses_surface(r);
+        for (const Plane& p : planes) {
+            if (crosses(r, p.point, p.n, p.touch)) return true;
+        }
+        return has_surface && crosses(r, surface_point, surface_n, 0.0);
     }
 
     std::string describe() const {
@@ -47,6 +57,9 @@ class FakeScene : public Occluder {
         if (has_surface)
             s += "the surface through " + show(surface_point) + " with normal " +
                  show(surface_n) + "; ";
+        for (const Plane& p : planes)
+            s +=
+                "the plane through " + show(p.point) + " with normal " + show(p.n) + "; ";
         return s.empty() ? std::string("nothing") : s;
     }
 
@@ -60,18 +73,19 @@ class FakeScene : public Occluder {
             std::clamp(glm::dot(to_b, w) / ww, double(r.tmin), double(r.tmax));
         return glm::length(o + t * w - DVec(b));
     }
-    // Does the segment touch or cross the surface's plane?
-    bool crosses_surface(const Ray& r) const {
-        const DVec n(surface_n), w(r.w);
-        const double s0 =
-            glm::dot(DVec(r.o) + double(r.tmin) * w - DVec(surface_point), n);
+    // Does the segment touch or cross the plane through point with normal n?
+    static bool crosses(const Ray& r, const Vec3& point, const Vec3& normal,
+                        double touch) {
+        const DVec n(normal), w(r.w);
+        if (!std::isfinite(r.tmin) || std::isnan(r.tmax)) return true;
+        const double s0 = glm::dot(DVec(r.o) + double(r.tmin) * w - DVec(point), n);
         const double wn = glm::dot(w, n);
         double s1;
         if (std::isinf(r.tmax))
             s1 = wn > 0 ? kInfinity : wn < 0 ? -kInfinity : s0;
         else
-            s1 = glm::dot(DVec(r.o) + double(r.tmax) * w - DVec(surface_point), n);
-        return (s0 <= 0 && s1 >= 0) || (s0 >= 0 && s1 <= 0);
+            s1 = glm::dot(DVec(r.o) + double(r.tmax) * w - DVec(point), n);
+        return (s0 <= touch && s1 >= -touch) || (s0 >= -touch && s1 <= touch);
     }
 };
 
@@ -92,6 +106,31 @@ bool check(const FakeScene& scene, const Vec3& x, const Vec3& n, const LightSamp
     return RAYLAB_CHECK(got == want, "expected " << verdict[want] << ", got "
                                                  << verdict[got]
                                                  << "; the shadow rays were:" << rays);
+}
+
+// The same scene with a ball of radius 0.02 halfway between x and the light: now x is in
+// shadow. Every "lit" expectation is paired with this one, so that a module that always
+// answers "lit" earns nothing
+FakeScene with_blocker(const FakeScene& base, const Vec3& x, const LightSample& s) {
+    FakeScene scene;
+    scene.has_surface = base.has_surface;
+    scene.surface_point = base.surface_point;
+    scene.surface_n = base.surface_n;
+    scene.planes.reserve(base.planes.size());
+    for (const FakeScene::Plane& p : base.planes)
+        scene.planes.push_back(p);
+    scene.balls.reserve(base.balls.size() + 1);
+    for (const FakeScene::Ball& b : base.balls)
+        scene.balls.push_back(b);
+    scene.balls.push_back({x + 0.5f * s.r * s.wi, 0.02});
+    return scene;
+}
+
+// "lit" for scene, and "in shadow" once a blocker is put halfway to the light
+bool check_lit(const FakeScene& scene, const Vec3& x, const Vec3& n,
+               const LightSample& s) {
+    return check(scene, x, n, s, false) &&
+           check(with_blocker(scene, x, s), x, n, s, true);
 }
 
 FakeScene balls(std::initializer_list<FakeScene::Ball> list) {
@@ -152,13 +191,13 @@ TEST_SUITE("08_shadows") {
 
     TEST_CASE("with nothing in the way the point is lit, and the scene is asked") {
         const FakeScene empty;
-        check(empty, Vec3(0.0f), kUp, kAbove, false);
+        check_lit(empty, Vec3(0.0f), kUp, kAbove);
         RAYLAB_CHECK(!empty.rays.empty(), "in_shadow never called scene.occluded(ray)");
     }
 
     TEST_CASE("a blocker beyond the light casts no shadow") {
         // The ball at (0, 6, 0) is 2 units past the light: the shadow ray must stop at it
-        check(balls({{Vec3(0, 6, 0), 0.05}}), Vec3(0.0f), kUp, kAbove, false);
+        check_lit(balls({{Vec3(0, 6, 0), 0.05}}), Vec3(0.0f), kUp, kAbove);
     }
 
     TEST_CASE(
@@ -171,9 +210,9 @@ TEST_SUITE("08_shadows") {
     TEST_CASE("a blocker behind the surface point casts no shadow") {
         // Below the floor, on the far side from the light; the light lies between the two
         // blockers of the second scene
-        check(balls({{Vec3(0, -1, 0), 0.05}}), Vec3(0.0f), kUp, kAbove, false);
-        check(balls({{Vec3(0, -1, 0), 0.05}, {Vec3(0, 5, 0), 0.05}}), Vec3(0.0f), kUp,
-              kAbove, false);
+        check_lit(balls({{Vec3(0, -1, 0), 0.05}}), Vec3(0.0f), kUp, kAbove);
+        check_lit(balls({{Vec3(0, -1, 0), 0.05}, {Vec3(0, 5, 0), 0.05}}), Vec3(0.0f), kUp,
+                  kAbove);
     }
 
     TEST_CASE("a blocker close to the surface still casts a shadow") {
@@ -189,7 +228,7 @@ TEST_SUITE("08_shadows") {
             const Setup c = random_setup(rng, Vec3(0.0f), 4.0f);
             INFO("seed " << seed << ": x lies " << show(c.x.below)
                          << " below the surface");
-            if (!check(surface_of(c), c.x.x, c.n, c.s, false)) break;
+            if (!check_lit(surface_of(c), c.x.x, c.n, c.s)) break;
         }
     }
 
@@ -200,19 +239,48 @@ TEST_SUITE("08_shadows") {
             const Setup c = random_setup(rng, Vec3(100, -60, 80), 1.0f);
             INFO("seed " << seed << ": x lies " << show(c.x.below)
                          << " below the surface");
-            if (!check(surface_of(c), c.x.x, c.n, c.s, false)) break;
+            if (!check_lit(surface_of(c), c.x.x, c.n, c.s)) break;
         }
     }
 
-    TEST_CASE("a normal facing away from the light still gives the right answer") {
-        // The same surfaces with n turned over: the light is now on the side -n points
-        // to, so the ray must leave the surface towards -n
-        for (int seed = 0; seed < 50; ++seed) {
-            Rng rng(3000 + seed);
-            const Setup c = random_setup(rng, Vec3(0.0f), 4.0f);
-            INFO("seed " << seed << ": n faces away from the light; x lies "
-                         << show(c.x.below) << " below the surface");
-            if (!check(surface_of(c), c.x.x, -c.n, c.s, false)) break;
+    TEST_CASE("a point 10^4 units from the origin shows no shadow acne either") {
+        // x's rounding error is about 1e-3 here (handout 08 §3: the offset grows with
+        // |x|), so a fixed offset of 1e-4 or 1e-3 gives acne
+        for (int seed = 0; seed < 100; ++seed) {
+            Rng rng(4000 + seed);
+            const Setup c = random_setup(rng, Vec3(9000, -6000, 4000), 1000.0f);
+            INFO("seed " << seed << ": x lies " << show(c.x.below)
+                         << " below the surface");
+            if (!check_lit(surface_of(c), c.x.x, c.n, c.s)) break;
+        }
+    }
+
+    TEST_CASE("at an inside corner the wall does not shadow the floor (tmin > 0)") {
+        // x on the floor y = 0, on the edge where the wall x = 0 meets it. Offset along
+        // n, the ray starts in the wall's plane: with tmin = 0 the wall blocks at t = 0
+        // and inside corners turn black (handout 08 §3)
+        FakeScene scene;
+        scene.has_surface = true;
+        scene.surface_point = Vec3(0.0f);
+        scene.surface_n = kUp;
+        scene.planes.push_back({Vec3(0.0f), Vec3(1, 0, 0), 0.0});
+        const Vec3 x(0, 0, 0.3f);
+        for (const Vec3& wi :
+             {Vec3(0.6f, 0.8f, 0), Vec3(0.8f, 0.6f, 0), Vec3(0.28f, 0.96f, 0)}) {
+            if (!check_lit(scene, x, kUp, LightSample{wi, 4.0f, Vec3(1.0f)})) break;
+        }
+    }
+
+    TEST_CASE("a light lying in a surface's plane is not shadowed by that surface") {
+        // The light sits in the ceiling y = 4 (as a lamp mounted on it does): a shadow
+        // segment that reaches the light itself meets the ceiling there
+        FakeScene scene;
+        scene.planes.push_back({Vec3(0, 4, 0), Vec3(0, -1, 0), 1e-5});
+        for (const Vec3& x : {Vec3(0.0f), Vec3(1, 0, 0), Vec3(0, 2, 0)}) {
+            const Vec3 light(0, 4, 0);
+            const LightSample s{glm::normalize(light - x), glm::length(light - x),
+                                Vec3(1.0f)};
+            if (!check_lit(scene, x, kUp, s)) break;
         }
     }
 
@@ -260,8 +328,10 @@ TEST_SUITE("08_shadows") {
     }
 
     TEST_CASE("random points, lights and blockers cast the right shadows") {
-        // Each case has the surface x lies on and, at random, a ball of radius 0.005
-        // between x and the light, past the light, behind x, or none
+        // Each case has the surface x lies on and, at random, a ball of radius 0.015
+        // between x and the light, past the light, behind x, or none. An offset of up to
+        // 0.01 along n moves the ray less than the radius sideways, so it still meets the
+        // ball between x and the light
         for (int seed = 0; seed < 300; ++seed) {
             Rng rng(2000 + seed);
             const Setup c = random_setup(rng, Vec3(0.0f), 10.0f);
@@ -270,16 +340,18 @@ TEST_SUITE("08_shadows") {
             const float r = c.s.r;
             if (kind == 0) {
                 const float s = rng.uniform(std::max(0.05f, 0.1f * r), 0.9f * r);
-                scene.balls.push_back({c.x_true + s * c.s.wi, 0.005});
+                scene.balls.push_back({c.x_true + s * c.s.wi, 0.015});
             } else if (kind == 1) {
                 const float s = rng.uniform(1.1f * r, 2.0f * r);
-                scene.balls.push_back({c.x_true + s * c.s.wi, 0.005});
+                scene.balls.push_back({c.x_true + s * c.s.wi, 0.015});
             } else if (kind == 2) {
                 const float s = rng.uniform(0.05f, 2.0f);
-                scene.balls.push_back({c.x_true - s * c.s.wi, 0.005});
+                scene.balls.push_back({c.x_true - s * c.s.wi, 0.015});
             }
             INFO("seed " << seed);
-            if (!check(scene, c.x.x, c.n, c.s, kind == 0)) break;
+            if (kind == 0 ? !check(scene, c.x.x, c.n, c.s, true)
+                          : !check_lit(scene, c.x.x, c.n, c.s))
+                break;
         }
     }
 }

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# ctest class/grade-class: 20 generated hand-ins graded by scripts/grade-class.sh, twice at
+# once into two output folders, and a third run on an output folder in use must refuse.
+# Each table must give every student the expected total and note (make_handins.py).
+# Usage: check_class.sh ROOT WORKDIR [JOBS]
+set -euo pipefail
+root=$1 work=$2 jobs=${3:-2}
+rm -rf "$work/class" "$work/class.expected.csv"
+mkdir -p "$work"
+python3 "$root/tests/class/make_handins.py" "$root" "$work/class"
+
+start=$(date +%s)
+"$root/scripts/grade-class.sh" "$work/class" -j "$jobs" --out "$work/a" >"$work/a.log" 2>&1 &
+a=$!
+"$root/scripts/grade-class.sh" "$work/class" -j "$jobs" --out "$work/b" >"$work/b.log" 2>&1 &
+b=$!
+sleep 1
+# A run on an output folder in use stops with a message instead of deleting its results
+if "$root/scripts/grade-class.sh" "$work/class" --out "$work/a" >"$work/c.log" 2>&1; then
+    echo "FAIL: a second run on $work/a did not stop"; fail=1
+elif ! grep -q 'another grade-class run' "$work/c.log"; then
+    echo "FAIL: the second run on $work/a gave no clear message:"; cat "$work/c.log"; fail=1
+fi
+wait $a || { echo "FAIL: run a failed"; cat "$work/a.log"; exit 1; }
+wait $b || { echo "FAIL: run b failed"; cat "$work/b.log"; exit 1; }
+echo "two runs of 20 hand-ins at once, -j $jobs each: $(($(date +%s) - start)) s wall"
+
+fail=${fail:-0}
+for run in a b; do
+    table=$work/$run/class.csv
+    [[ $(wc -l <"$table") -eq 21 ]] || { echo "FAIL: $table has not 20 rows"; fail=1; }
+    while IFS=, read -r student want note; do
+        row=$(grep "^$student," "$table") || { echo "FAIL: $student missing in $table"; fail=1; continue; }
+        total=$(awk -F, '{ print $10 }' <<<"$row")
+        case $want in
+            any) ;;
+            '<80') awk -v t="$total" 'BEGIN { exit !(t < 80) }' ||
+                { echo "FAIL: $student: total $total, want < 80"; fail=1; } ;;
+            *) awk -v t="$total" -v w="$want" 'BEGIN { exit !(t == w) }' ||
+                { echo "FAIL: $student: total $total, want $want ($row)"; fail=1; } ;;
+        esac
+        [[ -z $note || $row == *"$note"* ]] || { echo "FAIL: $student: no note '$note' ($row)"; fail=1; }
+        for f in results.json junit.xml; do
+            [[ -s $work/$run/students/$student/$f ]] || { echo "FAIL: no $f for $student"; fail=1; }
+        done
+    done <"$work/class.expected.csv"
+done
+cmp -s "$work/a/class.csv" "$work/b/class.csv" || { echo "FAIL: the two runs disagree"; fail=1; }
+cat "$work/a/class.md"
+exit "$fail"

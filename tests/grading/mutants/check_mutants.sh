@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# ctest grading/mutants: each honest mistake in this folder fails the test case that names
+# it (or scores 0), each correct alternative scores full marks (expected.txt). Each file is
+# graded alone through scripts/grade.sh as the only file of a hand-in; one scratch build.
+# Usage: check_mutants.sh ROOT WORKDIR
+set -uo pipefail
+root=$1 work=$2 here=$(cd "$(dirname "$0")" && pwd)
+mkdir -p "$work"
+fail=0
+while IFS='|' read -r file module want; do
+    [[ -z $file || $file == \#* ]] && continue
+    rm -rf "$work/handin" "$work/out" && mkdir -p "$work/handin"
+    cp "$here/$file" "$work/handin/$module.cpp"
+    SUBMISSION=$work/handin GRADE_OUT=$work/out GRADE_BUILD_DIR=$work/build \
+        "$root/scripts/grade.sh" >"$work/$file.log" 2>&1 || { echo "FAIL $file: grade.sh failed"; fail=1; continue; }
+    verdict=$(python3 - "$work/out" "$module" <<'PY'
+import json, sys, xml.etree.ElementTree as ET
+out, module = sys.argv[1], sys.argv[2]
+r = json.load(open(f"{out}/results.json"))
+t = [t for t in r["tests"] if t["name"].startswith(module + ":")][0]
+failed = [c.get("name") for c in ET.parse(f"{out}/junit.xml").iter("testcase")
+          if c.get("classname") == module and (c.find("failure") is not None or c.find("error") is not None)]
+print(f'{t["score"]}/{t["max_score"]}|' + "|".join(failed))
+PY
+)
+    score=${verdict%%|*} failed=${verdict#*|}
+    case $want in
+        zero) ok=$([[ ${score%%/*} == 0 || ${score%%/*} == 0.0 ]] && echo 1 || echo 0) ;;
+        full) ok=$([[ -z $failed ]] && echo 1 || echo 0) ;;
+        *) ok=$([[ "|$failed" == *"|$want"* ]] && echo 1 || echo 0) ;;
+    esac
+    printf '%-28s %-6s %-10s want %-45s failed: %s\n' "$file" "$([[ $ok == 1 ]] && echo ok || echo FAIL)" "$score" "$want" "${failed:-none}"
+    [[ $ok == 1 ]] || fail=1
+done <"$here/expected.txt"
+exit $fail
