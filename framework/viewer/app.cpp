@@ -8,6 +8,7 @@
 #include <imgui.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -164,6 +165,23 @@ bool setup_window(Viewer& v) {
     return true;
 }
 
+// The UI scale (panel or --ui-scale): fonts and every size of the style, from the
+// unscaled dark style so that repeated changes do not compound; the panel takes at most
+// 45% of the window so the image keeps room at 1024x640
+void apply_ui_scale(Viewer& v) {
+    const float scale = v.state.ui_scale;
+    if (scale != v.applied_ui_scale) {
+        ImGuiStyle style;
+        ImGui::StyleColorsDark(&style);
+        style.ScaleAllSizes(scale);
+        ImGui::GetStyle() = style;
+        ImGui::GetIO().FontGlobalScale = scale;
+        v.applied_ui_scale = scale;
+    }
+    const float window_w = ImGui::GetIO().DisplaySize.x;
+    v.panel_width = std::min(430.0f * scale, std::max(200.0f, 0.45f * window_w));
+}
+
 // Cleanup: stop the threads (they post GLFW events) before GLFW goes
 void cleanup(Viewer& v) {
     delete_texture(v.texture);
@@ -183,6 +201,7 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
     auto v = std::make_unique<Viewer>();
     v->exe_path = self_path();
     init_viewer(*v, options, viewer_options, [] { glfwPostEmptyEvent(); });
+    v->state.ui_scale = viewer_options.ui_scale;
     if (!setup_window(*v)) return 2;
     if (viewer_options.run_tests) run_tests(*v);
 
@@ -199,6 +218,7 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
         // Start the Dear ImGui frame; input, panel, image
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
+        apply_ui_scale(*v);  // after the backend set DisplaySize
         ImGui::NewFrame();
         const double now = glfwGetTime();
         handle_input(*v, static_cast<float>(now - last_time));

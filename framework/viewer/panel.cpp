@@ -27,7 +27,7 @@ void draw_panel(Viewer& v) {
                                    ImGuiWindowFlags_NoCollapse |
                                    ImGuiWindowFlags_NoSavedSettings;
     ImGui::Begin("raylab", nullptr, flags);
-    ImGui::PushItemWidth(-150.0f);  // room for the labels on the right
+    ImGui::PushItemWidth(-150.0f * v.state.ui_scale);  // room for the labels
     error_banner(v);
     if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen))
         scene_section(v);
@@ -39,13 +39,15 @@ void draw_panel(Viewer& v) {
         rendering_section(v);
     if (ImGui::CollapsingHeader("Modules", ImGuiTreeNodeFlags_DefaultOpen))
         modules_section(v);
-    if (ImGui::CollapsingHeader("Frame statistics", ImGuiTreeNodeFlags_DefaultOpen))
-        stats_section(v);
+    if (ImGui::CollapsingHeader("Frame statistics")) stats_section(v);
     // Open at start when the command line asked for them
     if (v.state.compare) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
     if (ImGui::CollapsingHeader("Compare with the reference")) compare_section(v);
     if (v.inspector.pinned) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
-    if (ImGui::CollapsingHeader("Pixel inspector")) inspector_section(v);
+    if (ImGui::CollapsingHeader("Pixel inspector")) {
+        inspector_section(v);
+        if (v.inspector.pinned) light_lines(v, v.inspector.pin);
+    }
     if (ImGui::CollapsingHeader("Files and report")) files_section(v);
     if (ImGui::CollapsingHeader("Log")) log_section(v);
     ImGui::PopItemWidth();

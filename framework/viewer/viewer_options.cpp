@@ -23,6 +23,14 @@ int parse_count(const std::string& flag, const std::string& text, int lo, int hi
     return static_cast<int>(x);
 }
 
+float parse_scale(const std::string& text) {
+    char* end = nullptr;
+    const float x = std::strtof(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !(x >= 0.5f && x <= 3.0f))
+        throw Error("--ui-scale: '" + text + "' is not a number in 0.5..3");
+    return x;
+}
+
 void parse_window(const std::string& text, ViewerOptions& o) {
     const size_t x = text.find('x');
     if (x == std::string::npos) throw Error("--window: '" + text + "' is not WxH");
@@ -61,6 +69,8 @@ ViewerOptions parse_viewer_options(const std::vector<std::string>& extra) {
             parse_window(value(), o);
         } else if (flag == "--image-scale") {
             o.image_scale = parse_count(flag, value(), 0, 16);
+        } else if (flag == "--ui-scale") {
+            o.ui_scale = parse_scale(value());
         } else if (flag == "--compare") {
             no_value();
             o.compare = true;
@@ -79,6 +89,7 @@ std::string viewer_options_help() {
     return R"(Viewer:
   --window WxH          window size (default 1280x800)
   --image-scale S       window pixels per image pixel (default 0: fit the window)
+  --ui-scale F          text and widget size, 0.5..3 (default 1; 1.5 for projectors)
   --compare             start with the difference to the reference shown
   --run-tests           run the graders of every module at start
   --load-view FILE      camera and lights from a view file (see docs/viewer.md)
