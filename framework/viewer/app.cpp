@@ -202,6 +202,12 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
     v->exe_path = self_path();
     init_viewer(*v, options, viewer_options, [] { glfwPostEmptyEvent(); });
     v->state.ui_scale = viewer_options.ui_scale;
+    if (viewer_options.pin_i >= 0) {
+        v->inspector.pinned = true;
+        v->inspector.pin_i = std::min(viewer_options.pin_i, options.settings.width - 1);
+        v->inspector.pin_j = std::min(viewer_options.pin_j, options.settings.height - 1);
+        v->panel.scroll_to_inspector = true;
+    }
     if (!setup_window(*v)) return 2;
     if (viewer_options.run_tests) run_tests(*v);
 

@@ -129,6 +129,7 @@ void draw_image(Viewer& v) {
     if (in.hovering && v.state.inspector && in.hover.probe) {
         ImGui::BeginTooltip();
         probe_lines(v, in.hover);
+        light_tooltip(in.hover);
         ImGui::EndTooltip();
     }
 }

@@ -44,7 +44,14 @@ void draw_panel(Viewer& v) {
     if (v.state.compare) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
     if (ImGui::CollapsingHeader("Compare with the reference")) compare_section(v);
     if (v.inspector.pinned) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
-    if (ImGui::CollapsingHeader("Pixel inspector")) {
+    const bool inspector_open = ImGui::CollapsingHeader("Pixel inspector");
+    if (v.panel.scroll_to_inspector) {
+        ImGui::SetScrollHereY(0.0f);
+        const ImGuiIO& io = ImGui::GetIO();
+        if (io.MouseWheel != 0.0f || io.MouseClicked[0])
+            v.panel.scroll_to_inspector = false;
+    }
+    if (inspector_open) {
         inspector_section(v);
         if (v.inspector.pinned) light_lines(v, v.inspector.pin);
     }

@@ -52,7 +52,28 @@ const LightProbe* find_light(const std::optional<PixelProbe>& p, int k) {
     return nullptr;
 }
 
+// One line per light: the shadow test's verdict and its blocker (the tooltip)
+void light_summary(const PixelProbe& p, const char* who) {
+    for (const LightProbe& lp : p.lights) {
+        if (!lp.tested) continue;
+        if (lp.blocker) {
+            ImGui::TextColored(lp.blocked ? kRed : kGreen,
+                               "%s light %d: %s, %s at t %.4g", who, lp.light + 1,
+                               lp.blocked ? "shadow" : "lit", lp.blocker_name.c_str(),
+                               lp.blocker->t);
+        } else {
+            ImGui::TextColored(lp.blocked ? kRed : kGreen, "%s light %d: %s", who,
+                               lp.light + 1, lp.blocked ? "shadow, ray free" : "lit");
+        }
+    }
+}
+
 }  // namespace
+
+void light_tooltip(const PixelReport& report) {
+    if (report.probe) light_summary(*report.probe, "yours:");
+    if (report.reference) light_summary(*report.reference, "reference:");
+}
 
 void light_lines(const Viewer& v, const PixelReport& report) {
     if (!report.probe || !report.probe->hit) return;

@@ -69,6 +69,13 @@ ViewerOptions parse_viewer_options(const std::vector<std::string>& extra) {
             parse_window(value(), o);
         } else if (flag == "--image-scale") {
             o.image_scale = parse_count(flag, value(), 0, 16);
+        } else if (flag == "--pin") {
+            const std::string text = value();
+            const size_t comma = text.find(',');
+            if (comma == std::string::npos)
+                throw Error("--pin: '" + text + "' is not I,J");
+            o.pin_i = parse_count(flag, text.substr(0, comma), 0, 16383);
+            o.pin_j = parse_count(flag, text.substr(comma + 1), 0, 16383);
         } else if (flag == "--ui-scale") {
             o.ui_scale = parse_scale(value());
         } else if (flag == "--compare") {
@@ -90,6 +97,7 @@ std::string viewer_options_help() {
   --window WxH          window size (default 1280x800)
   --image-scale S       window pixels per image pixel (default 0: fit the window)
   --ui-scale F          text and widget size, 0.5..3 (default 1; 1.5 for projectors)
+  --pin I,J             pin pixel (I, J) in the inspector (shadow rays, debug view)
   --compare             start with the difference to the reference shown
   --run-tests           run the graders of every module at start
   --load-view FILE      camera and lights from a view file (see docs/viewer.md)
