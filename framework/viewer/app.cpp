@@ -94,6 +94,10 @@ bool scripted_run_done(Viewer& v, int& exit_code) {
                 "screenshot %s: window %dx%d, image at %.0f,%.0f size %.0fx%.0f",
                 v.options.screenshot.c_str(), w, h, r.x, r.y, r.width, r.height);
             v.log.add(line);
+            std::snprintf(line, sizeof line,
+                          "panel: modules end at %.0f, window %.0f, scroll max %.0f",
+                          v.panel.modules_end, v.panel.window_height, v.panel.scroll_max);
+            v.log.add(line);
         } catch (const std::exception& e) {
             report_error(v, e.what());
             exit_code = 1;
@@ -116,6 +120,26 @@ void take_screenshot(Viewer& v) {
     }
 }
 
+// The pinned pixel's shadow tests, one line per light and side (scripted checks)
+void log_pinned_lights(Viewer& v) {
+    const PixelReport& pin = v.inspector.pin;
+    if (!v.inspector.pinned || !pin.probe) return;
+    const auto add = [&](const PixelProbe& p, const char* who) {
+        for (const LightProbe& lp : p.lights) {
+            char line[256];
+            std::snprintf(line, sizeof line, "pinned (%d, %d) %s light %d: %s%s%s", pin.i,
+                          pin.j, who, lp.light + 1,
+                          !lp.tested   ? "not tested"
+                          : lp.blocked ? "shadow"
+                                       : "lit",
+                          lp.blocker ? ", blocked by " : "", lp.blocker_name.c_str());
+            v.log.add(line);
+        }
+    };
+    add(*pin.probe, "yours");
+    if (pin.reference) add(*pin.reference, "reference");
+}
+
 // What the command line asked for at exit
 int exit_actions(Viewer& v) {
     int code = 0;
@@ -123,6 +147,7 @@ int exit_actions(Viewer& v) {
     if (!v.options.save_view.empty() && !save_view(v, v.options.save_view)) code = 1;
     if (!v.options.report.empty() && !save_report(v, v.options.report)) code = 1;
     v.log.add("final view: " + view_line(v.state.view));
+    log_pinned_lights(v);
     return code;
 }
 

@@ -39,6 +39,10 @@ void draw_panel(Viewer& v) {
         rendering_section(v);
     if (ImGui::CollapsingHeader("Modules", ImGuiTreeNodeFlags_DefaultOpen))
         modules_section(v);
+    // Where the module rows end, for the scripted check that they stay reachable
+    v.panel.modules_end = ImGui::GetCursorPosY();
+    v.panel.scroll_max = ImGui::GetScrollMaxY();
+    v.panel.window_height = ImGui::GetWindowHeight();
     if (ImGui::CollapsingHeader("Frame statistics")) stats_section(v);
     // Open at start when the command line asked for them
     if (v.state.compare) ImGui::SetNextItemOpen(true, ImGuiCond_Once);

@@ -94,11 +94,13 @@ void light_lines(const Viewer& v, const PixelReport& report) {
             ImGui::Text("light %d", k + 1);
             const LightProbe* lp =
                 find_light(side == 0 ? report.probe : report.reference, k);
+            ImGui::PushTextWrapPos(0.0f);  // wrap in narrow columns (UI scale)
             if (lp) {
                 light_cell(*lp);
             } else {
                 ImGui::TextDisabled("no hit here");
             }
+            ImGui::PopTextWrapPos();
             ImGui::PopID();
         }
     }

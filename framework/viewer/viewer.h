@@ -57,7 +57,8 @@ struct PanelState {
     View view_edit;          ///< the camera fields; applied only when valid
     std::string view_error;  ///< why view_edit is not applied
     int size_edit[2] = {640, 480};
-    int scene_choice = 0;              ///< index into builtin_scene_names()
+    int scene_choice = 0;  ///< index into builtin_scene_names()
+    float modules_end = 0, scroll_max = 0, window_height = 0;  ///< panel layout (log)
     bool scroll_to_inspector = false;  ///< --pin: show the inspector at the panel's top
     float ui_scale_edit = 0.0f;        ///< the UI scale slider while it is dragged
     int grade_shown = -1;              ///< module whose grader output is shown; -1: none
