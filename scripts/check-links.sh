@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Checks every relative link and image in the Markdown files under DIR: the file (or
+# folder) it names must exist. Links to the web (http:, https:, mailto:) and anchors
+# within a page (#...) are not followed.
+#
+# Usage: scripts/check-links.sh DIR
+# Prints one line per broken link (file:line: target) and exits 1 when there is any.
+set -euo pipefail
+dir=${1:?usage: scripts/check-links.sh DIR}
+cd "$dir"
+broken=0 checked=0
+while IFS= read -r md; do
+    # [text](target) and ![alt](target), one per match; the line number from grep -n
+    while IFS=: read -r line target; do
+        target=${target%%#*}          # drop an anchor
+        target=${target%% \"*}        # drop a title: (file "title")
+        [[ -z $target || $target =~ ^[a-z]+: ]] && continue
+        checked=$((checked + 1))
+        if [[ $target == /* ]]; then
+            echo "$md:$line: $target: absolute path (use a relative link)"
+            broken=$((broken + 1))
+        elif [[ ! -e $(dirname "$md")/$target ]]; then
+            echo "$md:$line: $target: no such file"
+            broken=$((broken + 1))
+        fi
+    done < <(grep -no '\]([^)]*)' "$md" | sed 's/:\](\(.*\))$/:\1/')
+done < <(find . -name build -prune -o -name '*.md' -print | sed 's|^\./||' | sort)
+echo "check-links: $checked relative links in $(find . -name build -prune -o -name '*.md' -print | wc -l) Markdown files, $broken broken"
+((broken == 0))
