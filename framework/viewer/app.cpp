@@ -210,6 +210,7 @@ void apply_ui_scale(Viewer& v) {
 // Cleanup: stop the threads (they post GLFW events) before GLFW goes
 void cleanup(Viewer& v) {
     delete_texture(v.texture);
+    debug_view_free(v.debug);
     v.worker.reset();
     v.grading.reset();
     ImGui_ImplOpenGL3_Shutdown();
@@ -227,6 +228,7 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
     v->exe_path = self_path();
     init_viewer(*v, options, viewer_options, [] { glfwPostEmptyEvent(); });
     v->state.ui_scale = viewer_options.ui_scale;
+    v->debug.open = viewer_options.debug_view;
     if (viewer_options.pin_i >= 0) {
         v->inspector.pinned = true;
         v->inspector.pin_i = std::min(viewer_options.pin_i, options.settings.width - 1);
@@ -256,6 +258,7 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
         last_time = now;
         draw_panel(*v);
         draw_image(*v);
+        debug_view_window(*v);
         update_probes(*v);
 
         // A drag ended: replace the coarse preview with the full image

@@ -58,6 +58,7 @@ void draw_panel(Viewer& v) {
     if (inspector_open) {
         inspector_section(v);
         if (v.inspector.pinned) light_lines(v, v.inspector.pin);
+        ImGui::Checkbox("3D debug view (scene and this pixel's rays)", &v.debug.open);
     }
     if (ImGui::CollapsingHeader("Files and report")) files_section(v);
     if (ImGui::CollapsingHeader("Log")) log_section(v);

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "debug_view.h"
 #include "grader.h"
 #include "log.h"
 #include "raylab/renderer.h"
@@ -132,6 +133,7 @@ struct Viewer {
     bool grading_logged = true;  ///< the last run's results are in the log
     std::future<Scene> loading;  ///< an OBJ being loaded in the background
     std::string loading_source;
+    DebugView debug;        ///< the 3D debug view window
     unsigned texture = 0;   ///< GL texture of the shown image or heat map
     int texture_width = 0;  ///< 0: nothing uploaded yet
     int texture_height = 0;

@@ -69,6 +69,9 @@ ViewerOptions parse_viewer_options(const std::vector<std::string>& extra) {
             parse_window(value(), o);
         } else if (flag == "--image-scale") {
             o.image_scale = parse_count(flag, value(), 0, 16);
+        } else if (flag == "--debug-view") {
+            no_value();
+            o.debug_view = true;
         } else if (flag == "--pin") {
             const std::string text = value();
             const size_t comma = text.find(',');
@@ -97,6 +100,7 @@ std::string viewer_options_help() {
   --window WxH          window size (default 1280x800)
   --image-scale S       window pixels per image pixel (default 0: fit the window)
   --ui-scale F          text and widget size, 0.5..3 (default 1; 1.5 for projectors)
+  --debug-view          open the 3D debug view (scene, pinned pixel's rays)
   --pin I,J             pin pixel (I, J) in the inspector (shadow rays, debug view)
   --compare             start with the difference to the reference shown
   --run-tests           run the graders of every module at start
