@@ -98,6 +98,13 @@ bool scripted_run_done(Viewer& v, int& exit_code) {
                           "panel: modules end at %.0f, window %.0f, scroll max %.0f",
                           v.panel.modules_end, v.panel.window_height, v.panel.scroll_max);
             v.log.add(line);
+            if (v.debug.open) {
+                std::snprintf(
+                    line, sizeof line, "debug view: %d triangles, %d lines",
+                    v.debug.scene_vertices / 3,
+                    int(v.debug.vertices.size() / 6 - v.debug.scene_vertices) / 2);
+                v.log.add(line);
+            }
         } catch (const std::exception& e) {
             report_error(v, e.what());
             exit_code = 1;

@@ -14,6 +14,7 @@
 #                scrolls) and the image region still equals raylab-render's (no overlay)
 #   inspector    a pinned pixel in the box's shadow: with the shadow stub the student's
 #                side is lit, the reference's shadow ray is blocked by a named triangle
+#   debug-view   the 3D debug view draws the scene and the pinned pixel's rays
 #   no-display   without DISPLAY: exit code 2 and a one-line message, no crash
 # Exit 77 (ctest: skipped) when xvfb-run or xdotool is missing.
 set -u
@@ -159,6 +160,15 @@ inspector)
         fail "the shadow stub's side is not 'lit' without a ray"
     grep -q "pinned (240, 225) reference light 1: shadow, blocked by triangle [0-9]" \
         out.txt || fail "the reference's shadow ray names no blocker"
+    ;;
+debug-view)
+    need xvfb-run
+    xvfb "$viewer" --scene cornell --width 320 --height 240 --pin 240,225 --debug-view \
+        --frames 3 --screenshot shot.png > out.txt 2>&1 ||
+        { cat out.txt; fail "the viewer failed"; }
+    cat out.txt
+    # 30 triangles; 3 light-cross lines + camera ray + normal + one shadow ray
+    grep -q "debug view: 30 triangles, 6 lines" out.txt || fail "wrong debug view content"
     ;;
 no-display)
     env -u DISPLAY -u WAYLAND_DISPLAY "$viewer" --frames 1 > out.txt 2> err.txt
