@@ -9,8 +9,13 @@
 set -euo pipefail
 dir=${1:?usage: scripts/check-links.sh DIR}
 cd "$dir"
-broken=0 checked=0
+broken=0 checked=0 files=0
+markdown() {
+    find . \( -name 'build*' -o -path ./scripts/release \) -prune -o -name '*.md' -print |
+        sed 's|^\./||' | sort
+}
 while IFS= read -r md; do
+    files=$((files + 1))
     # [text](target) and ![alt](target), one per match; the line number from grep -n
     while IFS=: read -r line target; do
         target=${target%%#*}          # drop an anchor
@@ -25,6 +30,6 @@ while IFS= read -r md; do
             broken=$((broken + 1))
         fi
     done < <(grep -no '\]([^)]*)' "$md" | sed 's/:\](\(.*\))$/:\1/')
-done < <(find . \( -name 'build*' -o -path ./scripts/release \) -prune -o -name '*.md' -print | sed 's|^\./||' | sort)
-echo "check-links: $checked relative links in $(find . \( -name 'build*' -o -path ./scripts/release \) -prune -o -name '*.md' -print | wc -l) Markdown files, $broken broken"
+done < <(markdown)
+echo "check-links: $checked relative links in $files Markdown files, $broken broken"
 ((broken == 0))

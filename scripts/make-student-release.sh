@@ -20,9 +20,9 @@
 #   tests/grading/stubs/  the untouched exercise files, which scripts/grade.sh compiles in
 #                         place of a hand-in's missing or broken file
 # Then it checks the release in a scratch folder: every relative Markdown link resolves
-# (scripts/check-links.sh), every stub has its TODO(student) steps, it configures and builds
-# with warnings as errors, starts the viewer under Xvfb (when the viewer and xvfb-run exist)
-# and compares its picture with the reference's, and grades the untouched exercises with
+# (scripts/check-links.sh), every stub has its TODO(student) steps, it configures and
+# builds with warnings as errors, starts the viewer under Xvfb (when the viewer and
+# xvfb-run exist) and compares its picture with the reference's, and grades the untouched exercises with
 # scripts/grade.sh, which must find every module not started.
 #
 # Environment: RELEASE_BUILD_DIR=DIR, the build of this tree that writes the golden data
