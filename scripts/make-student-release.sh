@@ -8,13 +8,22 @@
 # The release is this tree without what students must not have or cannot build: solutions/
 # (the reference), bench/ and tests/stress/ (they measure the reference), the instructor
 # guide and the benchmark notes. In their place it gets:
+#   README.md             the students' README (scripts/release/README.md)
+#   reference/libraylab_reference.a
+#                         the reference compiled (no source): stubs fall back to it, the
+#                         compare view, heat map and inspector show it, --reference works.
+#                         Built here by the instructor's toolchain: the release's platform
+#                         is this machine's (the course's is Debian 12 x86_64, g++ 12);
+#                         rebuild the release on each platform you support
 #   tests/data/golden/    the reference's answers to every grading case, written now by the
 #                         reference, so that the graders work without solutions/
 #   tests/grading/stubs/  the untouched exercise files, which scripts/grade.sh compiles in
 #                         place of a hand-in's missing or broken file
-# Then it checks the release in a scratch folder: it configures and builds with warnings as
-# errors, starts the viewer under Xvfb (when the viewer and xvfb-run exist), and grades
-# the untouched exercises with scripts/grade.sh, which must find every module not started.
+# Then it checks the release in a scratch folder: every relative Markdown link resolves
+# (scripts/check-links.sh), every stub has its TODO(student) steps, it configures and
+# builds with warnings as errors, starts the viewer under Xvfb (when the viewer and
+# xvfb-run exist) and compares its picture with the reference's, and grades the untouched exercises with
+# scripts/grade.sh, which must find every module not started.
 #
 # Environment: RELEASE_BUILD_DIR=DIR, the build of this tree that writes the golden data
 # (default build-student-release/); RELEASE_KEEP_CHECK=1 keeps the scratch check folder.
@@ -63,7 +72,7 @@ done
 excluded() {
     case $1 in
         solutions/* | bench/* | tests/stress/* | docs/instructor-guide.md | docs/benchmarks.md | \
-            tests/data/golden/* | build*/*) return 0 ;;
+            tests/data/golden/* | build*/* | scripts/release/* | README.md) return 0 ;;
     esac
     return 1
 }
@@ -88,6 +97,7 @@ while IFS= read -r f; do
 done < <(list_files)
 mkdir -p "$OUT/tests/grading/stubs" "$OUT/tests/data/golden"
 cp "$RAYLAB_ROOT"/exercises/*.cpp "$OUT/tests/grading/stubs/"
+cp "$RAYLAB_ROOT/scripts/release/README.md" "$OUT/README.md"
 printf 'raylab student release of %s, made %s\n' "$commit" "$(date -u +%Y-%m-%dT%H:%MZ)" \
     >"$OUT/.raylab-release"
 note "$count files; no solutions/, bench/, tests/stress/ or instructor guide"
@@ -105,6 +115,23 @@ RAYLAB_GRADE_IMPL=reference RAYLAB_GOLDEN_WRITE="$OUT/tests/data/golden" \
     "$BUILD/tests/grading/raylab-grading-tests" --no-colors >"$BUILD/release-golden.log" 2>&1 ||
     die "the reference fails its own graders: see $BUILD/release-golden.log"
 grep '^\[raylab\] wrote' "$BUILD/release-golden.log" | sed 's/^\[raylab\] /    /'
+# ---- The reference, compiled ------------------------------------------------------------
+
+step "Building the reference library (raylab_reference) for the release"
+mkdir -p "$OUT/reference"
+if ninja -C "$BUILD" -t targets all 2>/dev/null | grep -q '^raylab_reference:'; then
+    ninja -C "$BUILD" raylab_reference raylab-render >"$BUILD/release-reference.log" 2>&1 ||
+        die "building raylab_reference failed: see $BUILD/release-reference.log"
+    lib=$(find "$BUILD" -name libraylab_reference.a -print -quit)
+    [[ -n $lib ]] || die "raylab_reference built no libraylab_reference.a"
+    cp "$lib" "$OUT/reference/libraylab_reference.a"
+    note "reference/libraylab_reference.a ($(du -k "$lib" | cut -f1) KiB," \
+        "$(uname -m), $(c++ --version | head -n 1))"
+else
+    die "this tree has no raylab_reference target (framework/CMakeLists.txt): cannot ship" \
+        "the compiled reference"
+fi
+
 if ! diff -rq "$RAYLAB_ROOT/tests/data/golden" "$OUT/tests/data/golden" >/dev/null; then
     warn "tests/data/golden/ in this tree differs from what the reference writes now;" \
         "refresh it: ninja -C <build> raylab-update-golden"
@@ -113,12 +140,28 @@ fi
 # ---- Check the release -------------------------------------------------------------------
 
 [[ ! -e $OUT/solutions ]] || die "the release holds solutions/"
+src=$(find "$OUT/reference" -type f ! -name libraylab_reference.a)
+[[ -z $src ]] || die "reference/ holds more than the library: $src"
 leaks=$(grep -rl 'raylab::reference::[a-z_]*(' "$OUT/exercises" "$OUT/tests/grading" || true)
 [[ -z $leaks ]] || die "these release files call the reference: $leaks"
 
 CHECK=$(mktemp -d "${TMPDIR:-/tmp}/raylab-release-check.XXXXXX")
 cleanup() { [[ ${RELEASE_KEEP_CHECK:-} == 1 ]] || rm -rf "$CHECK"; }
 trap cleanup EXIT
+
+step "Check 0: links and stubs"
+bash "$RAYLAB_ROOT/scripts/check-links.sh" "$OUT" | sed 's/^/    /' ||
+    die "the release's Markdown has broken links (above)"
+for id in "${MODULES[@]}"; do
+    grep -q "TODO(student)" "$OUT/exercises/$id.cpp" ||
+        die "exercises/$id.cpp has no TODO(student) step: grep -rn \"TODO(student)\" fails"
+done
+for f in "$OUT"/README.md "$OUT"/docs/handouts/*.md; do
+    if grep -n 'instructor-guide\|benchmarks\.md\|solutions/' "$f"; then
+        die "$f mentions what the release does not hold (above)"
+    fi
+done
+note "links resolve, every stub lists its TODO(student) steps"
 
 step "Check 1: the release builds (warnings as errors) in $CHECK/build"
 cmake -S "$OUT" -B "$CHECK/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WERROR=ON \
@@ -140,13 +183,26 @@ if [[ ! -x $viewer ]]; then
 elif ! have xvfb-run; then
     note "SKIPPED: xvfb-run is missing (scripts/install-deps.sh gui)"
 else
-    xvfb-run -a -s '-screen 0 1280x800x24' "$viewer" --frames 3 \
-        --screenshot "$CHECK/viewer.png" >"$CHECK/viewer.log" 2>&1 || {
+    # The first run from the stubs alone must show the reference's Cornell box, lit and
+    # shadowed: the window's image region against the instructor build's raylab-render
+    shot=(--width 320 --height 240)
+    "$BUILD/framework/raylab-render" "${shot[@]}" --output "$CHECK/reference.png" \
+        >/dev/null || die "raylab-render of the instructor build failed"
+    xvfb-run -a -s '-screen 0 1280x800x24' "$viewer" "${shot[@]}" --image-scale 1 \
+        --window 1000x600 --frames 3 --screenshot "$CHECK/viewer.png" \
+        >"$CHECK/viewer.log" 2>&1 || {
         cat "$CHECK/viewer.log" >&2
         die "the viewer of the release does not start"
     }
     [[ -s $CHECK/viewer.png ]] || die "the viewer wrote no screenshot"
-    note "the viewer ran 3 frames under Xvfb and wrote a screenshot"
+    n='\([0-9]*\)'
+    crop=$(sed -n "s/.*image at $n,$n size ${n}x$n.*/\\1,\\2,\\3,\\4/p" "$CHECK/viewer.log")
+    "$CHECK/build/tests/gui/raylab-png-diff" "$CHECK/viewer.png" "$CHECK/reference.png" \
+        --crop "$crop" --tolerance 2 >"$CHECK/viewer-diff.log" 2>&1 || {
+        cat "$CHECK/viewer-diff.log" >&2
+        die "the release's first picture is not the reference's Cornell box"
+    }
+    note "the viewer's first picture from the stubs equals the reference's (Xvfb)"
 fi
 
 step "Check 3: the graders run on the untouched exercises and score zero"

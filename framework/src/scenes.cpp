@@ -3,6 +3,7 @@
 
 #include "raylab/error.h"
 #include "raylab/input_file.h"
+#include "raylab/sample_scenes.h"
 
 namespace raylab {
 
@@ -124,17 +125,24 @@ Scene dtu_scene() {
 }
 
 std::vector<std::string> builtin_scene_names() {
-    return {"cornell", "dtu"};
+    std::vector<std::string> names = {"cornell", "dtu"};
+    for (const std::string& name : sample_scene_names())  // generated (sample_scenes.h)
+        names.push_back(name);
+    return names;
 }
 
 Scene load_scene(const std::string& name_or_path, const LoadProgress& progress) {
     if (name_or_path == "cornell") return cornell_box();
     if (name_or_path == "dtu") return dtu_scene();
+    if (auto sample = sample_scene(name_or_path)) return std::move(*sample);
     const std::string& p = name_or_path;
     const bool obj = p.size() > 4 && (p.compare(p.size() - 4, 4, ".obj") == 0 ||
                                       p.compare(p.size() - 4, 4, ".OBJ") == 0);
     if (obj) return load_obj(p, progress);
-    throw Error("unknown scene '" + printable(p) + "' (cornell, dtu, or a .obj file)");
+    std::string known;
+    for (const std::string& name : builtin_scene_names())
+        known += name + ", ";
+    throw Error("unknown scene '" + printable(p) + "' (" + known + "or a .obj file)");
 }
 
 }  // namespace raylab

@@ -96,6 +96,17 @@ bool scripted_run_done(Viewer& v, int& exit_code) {
                 "screenshot %s: window %dx%d, image at %.0f,%.0f size %.0fx%.0f",
                 v.options.screenshot.c_str(), w, h, r.x, r.y, r.width, r.height);
             v.log.add(line);
+            std::snprintf(line, sizeof line,
+                          "panel: modules end at %.0f, window %.0f, scroll max %.0f",
+                          v.panel.modules_end, v.panel.window_height, v.panel.scroll_max);
+            v.log.add(line);
+            if (v.debug.open) {
+                std::snprintf(
+                    line, sizeof line, "debug view: %d triangles, %d lines",
+                    v.debug.scene_vertices / 3,
+                    int(v.debug.vertices.size() / 6 - v.debug.scene_vertices) / 2);
+                v.log.add(line);
+            }
         } catch (const std::exception& e) {
             report_error(v, e.what());
             exit_code = 1;
@@ -118,6 +129,26 @@ void take_screenshot(Viewer& v) {
     }
 }
 
+// The pinned pixel's shadow tests, one line per light and side (scripted checks)
+void log_pinned_lights(Viewer& v) {
+    const PixelReport& pin = v.inspector.pin;
+    if (!v.inspector.pinned || !pin.probe) return;
+    const auto add = [&](const PixelProbe& p, const char* who) {
+        for (const LightProbe& lp : p.lights) {
+            char line[256];
+            std::snprintf(line, sizeof line, "pinned (%d, %d) %s light %d: %s%s%s", pin.i,
+                          pin.j, who, lp.light + 1,
+                          !lp.tested   ? "not tested"
+                          : lp.blocked ? "shadow"
+                                       : "lit",
+                          lp.blocker ? ", blocked by " : "", lp.blocker_name.c_str());
+            v.log.add(line);
+        }
+    };
+    add(*pin.probe, "yours");
+    if (pin.reference) add(*pin.reference, "reference");
+}
+
 // What the command line asked for at exit
 int exit_actions(Viewer& v) {
     int code = 0;
@@ -125,6 +156,7 @@ int exit_actions(Viewer& v) {
     if (!v.options.save_view.empty() && !save_view(v, v.options.save_view)) code = 1;
     if (!v.options.report.empty() && !save_report(v, v.options.report)) code = 1;
     v.log.add("final view: " + view_line(v.state.view));
+    log_pinned_lights(v);
     return code;
 }
 
@@ -186,9 +218,27 @@ void draw_loading(Viewer& v) {
     ImGui::End();
 }
 
+// The UI scale (panel or --ui-scale): fonts and every size of the style, from the
+// unscaled dark style so that repeated changes do not compound; the panel takes at most
+// 45% of the window so the image keeps room at 1024x640
+void apply_ui_scale(Viewer& v) {
+    const float scale = v.state.ui_scale;
+    if (scale != v.applied_ui_scale) {
+        ImGuiStyle style;
+        ImGui::StyleColorsDark(&style);
+        style.ScaleAllSizes(scale);
+        ImGui::GetStyle() = style;
+        ImGui::GetIO().FontGlobalScale = scale;
+        v.applied_ui_scale = scale;
+    }
+    const float window_w = ImGui::GetIO().DisplaySize.x;
+    v.panel_width = std::min(430.0f * scale, std::max(200.0f, 0.45f * window_w));
+}
+
 // Cleanup: stop the threads (they post GLFW events) before GLFW goes
 void cleanup(Viewer& v) {
     delete_texture(v.texture);
+    debug_view_free(v.debug);
     v.worker.reset();
     v.grading.reset();
     ImGui_ImplOpenGL3_Shutdown();
@@ -205,6 +255,14 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
     auto v = std::make_unique<Viewer>();
     v->exe_path = self_path();
     init_viewer(*v, options, viewer_options, [] { glfwPostEmptyEvent(); });
+    v->state.ui_scale = viewer_options.ui_scale;
+    v->debug.open = viewer_options.debug_view;
+    if (viewer_options.pin_i >= 0) {
+        v->inspector.pinned = true;
+        v->inspector.pin_i = std::min(viewer_options.pin_i, options.settings.width - 1);
+        v->inspector.pin_j = std::min(viewer_options.pin_j, options.settings.height - 1);
+        v->panel.scroll_to_inspector = true;
+    }
     if (!setup_window(*v)) return 2;
     if (viewer_options.run_tests) run_tests(*v);
 
@@ -224,6 +282,7 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
         // Start the Dear ImGui frame; input, panel, image
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
+        apply_ui_scale(*v);  // after the backend set DisplaySize
         ImGui::NewFrame();
         const double now = glfwGetTime();
         handle_input(*v, static_cast<float>(now - last_time));
@@ -231,6 +290,7 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
         draw_panel(*v);
         draw_image(*v);
         draw_loading(*v);
+        debug_view_window(*v);
         update_probes(*v);
 
         // A drag ended: replace the coarse preview with the full image

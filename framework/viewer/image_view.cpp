@@ -38,7 +38,8 @@ namespace {
 ImageRect layout(const Viewer& v) {
     const ImGuiIO& io = ImGui::GetIO();
     const float x0 = v.panel_width, area_w = std::max(1.0f, io.DisplaySize.x - x0);
-    const float area_h = std::max(1.0f, io.DisplaySize.y);
+    const float y0 = v.overlay_height;  // the timing strip (frame_overlay)
+    const float area_h = std::max(1.0f, io.DisplaySize.y - y0);
     const float W = float(v.state.settings.width), H = float(v.state.settings.height);
     const float scale = v.state.image_scale > 0 ? float(v.state.image_scale)
                                                 : std::min(area_w / W, area_h / H);
@@ -46,7 +47,7 @@ ImageRect layout(const Viewer& v) {
     r.width = W * scale;
     r.height = H * scale;
     r.x = std::floor(x0 + std::max(0.0f, (area_w - r.width) / 2.0f));
-    r.y = std::floor(std::max(0.0f, (area_h - r.height) / 2.0f));
+    r.y = std::floor(y0 + std::max(0.0f, (area_h - r.height) / 2.0f));
     return r;
 }
 
@@ -128,6 +129,7 @@ void draw_image(Viewer& v) {
     if (in.hovering && v.state.inspector && in.hover.probe) {
         ImGui::BeginTooltip();
         probe_lines(v, in.hover);
+        light_tooltip(in.hover);
         ImGui::EndTooltip();
     }
 }

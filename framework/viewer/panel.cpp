@@ -27,7 +27,7 @@ void draw_panel(Viewer& v) {
                                    ImGuiWindowFlags_NoCollapse |
                                    ImGuiWindowFlags_NoSavedSettings;
     ImGui::Begin("raylab", nullptr, flags);
-    ImGui::PushItemWidth(-150.0f);  // room for the labels on the right
+    ImGui::PushItemWidth(-150.0f * v.state.ui_scale);  // room for the labels
     error_banner(v);
     if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen))
         scene_section(v);
@@ -39,13 +39,27 @@ void draw_panel(Viewer& v) {
         rendering_section(v);
     if (ImGui::CollapsingHeader("Modules", ImGuiTreeNodeFlags_DefaultOpen))
         modules_section(v);
-    if (ImGui::CollapsingHeader("Frame statistics", ImGuiTreeNodeFlags_DefaultOpen))
-        stats_section(v);
+    // Where the module rows end, for the scripted check that they stay reachable
+    v.panel.modules_end = ImGui::GetCursorPosY();
+    v.panel.scroll_max = ImGui::GetScrollMaxY();
+    v.panel.window_height = ImGui::GetWindowHeight();
+    if (ImGui::CollapsingHeader("Frame statistics")) stats_section(v);
     // Open at start when the command line asked for them
     if (v.state.compare) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
     if (ImGui::CollapsingHeader("Compare with the reference")) compare_section(v);
     if (v.inspector.pinned) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
-    if (ImGui::CollapsingHeader("Pixel inspector")) inspector_section(v);
+    const bool inspector_open = ImGui::CollapsingHeader("Pixel inspector");
+    if (v.panel.scroll_to_inspector) {
+        ImGui::SetScrollHereY(0.0f);
+        const ImGuiIO& io = ImGui::GetIO();
+        if (io.MouseWheel != 0.0f || io.MouseClicked[0])
+            v.panel.scroll_to_inspector = false;
+    }
+    if (inspector_open) {
+        inspector_section(v);
+        if (v.inspector.pinned) light_lines(v, v.inspector.pin);
+        ImGui::Checkbox("3D debug view (scene and this pixel's rays)", &v.debug.open);
+    }
     if (ImGui::CollapsingHeader("Files and report")) files_section(v);
     if (ImGui::CollapsingHeader("Log")) log_section(v);
     ImGui::PopItemWidth();

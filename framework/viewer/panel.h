@@ -28,6 +28,12 @@ void inspector_section(Viewer& v);
 /// A pixel's probes as text lines (the tooltip and the section share them).
 void probe_lines(const Viewer& v, const PixelReport& report);
 
+// panel_inspector.cpp
+/// The pinned pixel's lights: samples, shadow rays and blockers, student and reference.
+void light_lines(const Viewer& v, const PixelReport& report);
+/// One line per light and side: shadow or lit, and the blocker (the hover tooltip).
+void light_tooltip(const PixelReport& report);
+
 // image_view.cpp
 /// Uploads the image (or heat map) when it changed.
 void refresh_texture(Viewer& v);

@@ -88,22 +88,30 @@ void rendering_section(Viewer& v) {
     ImGui::SameLine();
     ImGui::RadioButton("2:1", &scale, 2);
     s.image_scale = scale;
+    // Applied at the next frame (app.cpp): fonts and sizes, for projectors and high DPI
+    // (on release: rescaling under a dragged slider would move it away from the mouse)
+    float& edit = v.panel.ui_scale_edit;
+    if (!ImGui::IsAnyItemActive() || edit <= 0.0f) edit = s.ui_scale;
+    ImGui::SliderFloat("UI scale", &edit, 0.5f, 3.0f, "%.2f",
+                       ImGuiSliderFlags_AlwaysClamp);
+    if (ImGui::IsItemDeactivatedAfterEdit()) s.ui_scale = edit;
 }
 
+// A strip above the image area (image_view.cpp lays the image out below it), so the
+// timing never covers a pixel
 void frame_overlay(Viewer& v) {
     const FrameState& f = v.frames;
-    const ImageRect& r = v.image_rect;
     const ImGuiIO& io = ImGui::GetIO();
-    const float width = 300.0f;
-    ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - width - 8.0f, 8.0f),
-                            ImGuiCond_Always);
-    ImGui::SetNextWindowSize(ImVec2(width, 0.0f), ImGuiCond_Always);
+    const float line = ImGui::GetTextLineHeightWithSpacing();
+    v.overlay_height = 2.0f * line + 2.0f * ImGui::GetStyle().WindowPadding.y;
+    ImGui::SetNextWindowPos(ImVec2(v.panel_width, 0.0f), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(io.DisplaySize.x - v.panel_width, v.overlay_height),
+                             ImGuiCond_Always);
     ImGui::SetNextWindowBgAlpha(0.6f);
     const ImGuiWindowFlags flags =
         ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
         ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
         ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
-    (void)r;
     ImGui::Begin("frame", nullptr, flags);
     if (f.history_ms.empty()) {
         ImGui::TextUnformatted(v.worker->busy() ? "rendering the first frame ..."
@@ -111,17 +119,20 @@ void frame_overlay(Viewer& v) {
         ImGui::End();
         return;
     }
+    ImGui::BeginGroup();
     ImGui::Text("%.2f ms  %s %dx%d%s", f.last.milliseconds,
                 f.shown_preview ? "preview" : "full", f.shown.width, f.shown.height,
                 v.worker->busy() ? "  (rendering)" : "");
     ImGui::Text("%.2f Mrays/s on %d threads", f.last.rays_per_second() * 1e-6,
                 f.last.threads);
+    ImGui::EndGroup();
+    ImGui::SameLine();
     const float top = *std::max_element(f.history_ms.begin(), f.history_ms.end());
     char overlay[64];
     std::snprintf(overlay, sizeof overlay, "render time [ms], max %.1f", top);
     ImGui::PlotLines("##history", f.history_ms.data(), int(f.history_ms.size()), 0,
                      overlay, 0.0f, top * 1.1f,
-                     ImVec2(ImGui::GetContentRegionAvail().x, 50.0f));
+                     ImVec2(ImGui::GetContentRegionAvail().x, 2.0f * line));
     ImGui::End();
 }
 

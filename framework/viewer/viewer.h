@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "debug_view.h"
 #include "grader.h"
 #include "log.h"
 #include "raylab/renderer.h"
@@ -44,6 +45,7 @@ struct ViewerState {
     bool show_difference = true;  ///< with compare: show the heat map, not the image
     bool inspector = true;        ///< tooltip of the pixel under the mouse
     int image_scale = 0;          ///< window pixels per image pixel; 0: fit
+    float ui_scale = 1.0f;        ///< text and widget size (panel, --ui-scale)
     bool dirty = true;            ///< the image is out of date: render again
     bool interacting = false;     ///< a value is being dragged: coarse previews
     bool retone = true;           ///< the texture is out of date: upload again
@@ -60,7 +62,10 @@ struct PanelState {
     std::string view_error;  ///< why view_edit is not applied
     int size_edit[2] = {640, 480};
     int scene_choice = 0;  ///< index into builtin_scene_names()
-    int grade_shown = -1;  ///< module whose grader output is shown; -1: none
+    float modules_end = 0, scroll_max = 0, window_height = 0;  ///< panel layout (log)
+    bool scroll_to_inspector = false;  ///< --pin: show the inspector at the panel's top
+    float ui_scale_edit = 0.0f;        ///< the UI scale slider while it is dragged
+    int grade_shown = -1;              ///< module whose grader output is shown; -1: none
 };
 
 /// The frames the renderer sent back.
@@ -143,12 +148,15 @@ struct Viewer {
     std::string loading_source;
     std::shared_ptr<LoadStatus> load_status;  ///< the progress of loading
     std::function<void()> wake;  ///< wakes the UI thread (posts an empty GLFW event)
+    DebugView debug;             ///< the 3D debug view window
     unsigned texture = 0;        ///< GL texture of the shown image or heat map
     int texture_width = 0;       ///< 0: nothing uploaded yet
     int texture_height = 0;
-    bool texture_is_heat = false;  ///< the texture shows the difference heat map
-    float panel_width = 430.0f;
-    int extra_frames = 2;  ///< frames to draw before sleeping (ImGui settles)
+    bool texture_is_heat = false;   ///< the texture shows the difference heat map
+    float panel_width = 430.0f;     ///< at this frame's UI scale and window width
+    float overlay_height = 0.0f;    ///< the timing strip above the image
+    float applied_ui_scale = 0.0f;  ///< the scale the ImGui style has now
+    int extra_frames = 2;           ///< frames to draw before sleeping (ImGui settles)
     bool screenshot_requested = false;  ///< F12: write the window at the end of a frame
     bool quit = false;
 };

@@ -22,6 +22,14 @@ int parse_count(const std::string& flag, const std::string& text, int lo, int hi
     return static_cast<int>(x);
 }
 
+float parse_scale(const std::string& text) {
+    char* end = nullptr;
+    const float x = std::strtof(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !(x >= 0.5f && x <= 3.0f))
+        throw Error("--ui-scale: '" + text + "' is not a number in 0.5..3");
+    return x;
+}
+
 void parse_window(const std::string& text, ViewerOptions& o) {
     const size_t x = text.find('x');
     if (x == std::string::npos)
@@ -66,6 +74,18 @@ ViewerOptions parse_viewer_options(const std::vector<std::string>& extra) {
             parse_window(value(), o);
         } else if (flag == "--image-scale") {
             o.image_scale = parse_count(flag, value(), 0, 16);
+        } else if (flag == "--debug-view") {
+            no_value();
+            o.debug_view = true;
+        } else if (flag == "--pin") {
+            const std::string text = value();
+            const size_t comma = text.find(',');
+            if (comma == std::string::npos)
+                throw Error("--pin: '" + text + "' is not I,J");
+            o.pin_i = parse_count(flag, text.substr(0, comma), 0, 16383);
+            o.pin_j = parse_count(flag, text.substr(comma + 1), 0, 16383);
+        } else if (flag == "--ui-scale") {
+            o.ui_scale = parse_scale(value());
         } else if (flag == "--compare") {
             no_value();
             o.compare = true;
@@ -84,6 +104,9 @@ std::string viewer_options_help() {
     return R"(Viewer:
   --window WxH          window size (default 1280x800)
   --image-scale S       window pixels per image pixel (default 0: fit the window)
+  --ui-scale F          text and widget size, 0.5..3 (default 1; 1.5 for projectors)
+  --debug-view          open the 3D debug view (scene, pinned pixel's rays)
+  --pin I,J             pin pixel (I, J) in the inspector (shadow rays, debug view)
   --compare             start with the difference to the reference shown
   --run-tests           run the graders of every module at start
   --load-view FILE      camera and lights from a view file (see docs/viewer.md)

@@ -19,8 +19,11 @@ struct ViewerOptions {
     std::string report;       ///< --report DIR: a bug-report folder, at exit
     int window_width = 1280;  ///< --window WxH
     int window_height = 800;
-    int image_scale = 0;     ///< --image-scale S: window pixels per image pixel; 0 fits
-    bool compare = false;    ///< --compare: start with the difference to the reference
+    bool debug_view = false;     ///< --debug-view: open the 3D debug view at start
+    int pin_i = -1, pin_j = -1;  ///< --pin I,J: pixel pinned in the inspector at start
+    float ui_scale = 1.0f;  ///< --ui-scale F: text and widget size (projectors, high DPI)
+    int image_scale = 0;    ///< --image-scale S: window pixels per image pixel; 0 fits
+    bool compare = false;   ///< --compare: start with the difference to the reference
     bool run_tests = false;  ///< --run-tests: run the graders at start
 };
 

@@ -10,6 +10,11 @@
 #   focus        keys typed into a panel text field move nothing
 #   run-tests    "Run tests" grades in child processes (a fake grader crashes in one
 #                module) and --report writes the folder
+#   small-panel  at 1024x640 and UI scale 1.5 the module rows stay reachable (the panel
+#                scrolls) and the image region still equals raylab-render's (no overlay)
+#   inspector    a pinned pixel in the box's shadow: with the shadow stub the student's
+#                side is lit, the reference's shadow ray is blocked by a named triangle
+#   debug-view   the 3D debug view draws the scene and the pinned pixel's rays
 #   no-display   without DISPLAY: exit code 2 and a one-line message, no crash
 # Exit 77 (ctest: skipped) when xvfb-run or xdotool is missing.
 set -u
@@ -123,6 +128,47 @@ SH
     done
     grep -q "raylab-render --scene cornell" report/settings.txt ||
         fail "no command in report"
+    ;;
+small-panel)
+    need xvfb-run
+    "$render" "${flags[@]}" --output render.png > render.txt ||
+        fail "raylab-render failed"
+    xvfb "$viewer" "${flags[@]}" --image-scale 1 --window 1024x640 --ui-scale 1.5 \
+        --frames 3 --screenshot shot.png > out.txt 2>&1 ||
+        { cat out.txt; fail "the viewer failed"; }
+    cat out.txt
+    n='\([0-9]*\)'
+    read -r x y w h < <(sed -n "s/.*image at $n,$n size ${n}x$n.*/\\1 \\2 \\3 \\4/p" \
+        out.txt)
+    [ "${w:-}" = 320 ] || fail "image region not 320 wide: '${w:-}'"
+    "$png_diff" shot.png render.png --crop "$x,$y,$w,$h" --tolerance 2 ||
+        fail "something covers the image (window region differs from raylab-render)"
+    # "panel: modules end at E, window H, scroll max S": the last row can be scrolled to
+    pat=".*modules end at $n, window $n, scroll max $n.*"
+    read -r e ph s < <(sed -n "s/$pat/\\1 \\2 \\3/p" out.txt)
+    [ -n "${e:-}" ] || fail "no panel line"
+    [ "$e" -gt "$ph" ] || fail "panel fits without scrolling: the test proves nothing"
+    [ "$e" -le $((ph + s)) ] || fail "module rows end at $e, beyond $ph + scroll $s"
+    ;;
+inspector)
+    need xvfb-run
+    xvfb "$viewer" --scene cornell --width 320 --height 240 --pin 240,225 \
+        --student shadows --frames 3 > out.txt 2>&1 ||
+        { cat out.txt; fail "the viewer failed"; }
+    cat out.txt
+    grep -q "pinned (240, 225) yours light 1: lit$" out.txt ||
+        fail "the shadow stub's side is not 'lit' without a ray"
+    grep -q "pinned (240, 225) reference light 1: shadow, blocked by triangle [0-9]" \
+        out.txt || fail "the reference's shadow ray names no blocker"
+    ;;
+debug-view)
+    need xvfb-run
+    xvfb "$viewer" --scene cornell --width 320 --height 240 --pin 240,225 --debug-view \
+        --frames 3 --screenshot shot.png > out.txt 2>&1 ||
+        { cat out.txt; fail "the viewer failed"; }
+    cat out.txt
+    # 30 triangles; 3 light-cross lines + camera ray + normal + one shadow ray
+    grep -q "debug view: 30 triangles, 6 lines" out.txt || fail "wrong debug view content"
     ;;
 no-display)
     env -u DISPLAY -u WAYLAND_DISPLAY "$viewer" --frames 1 > out.txt 2> err.txt

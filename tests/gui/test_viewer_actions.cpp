@@ -16,6 +16,7 @@
 #include "grader.h"
 #include "raylab/error.h"
 #include "raylab/options.h"
+#include "raylab/scenes.h"
 #include "report.h"
 
 using namespace raylab;
@@ -290,5 +291,46 @@ TEST_SUITE("viewer") {
         h.v.inspector.pinned = false;
         update_probes(h.v);
         CHECK_FALSE(h.v.inspector.pin.probe);
+    }
+}
+
+TEST_SUITE("viewer") {
+    TEST_CASE("the probe records each light's shadow ray and names its blocker") {
+#if RAYLAB_HAVE_REFERENCE
+        const Scene box = load_scene("cornell");
+        RenderSettings settings;
+        settings.width = 320;
+        settings.height = 240;
+        // Pixel (240, 225) is on the floor in the short block's shadow
+        const ModuleTable ref = ModuleTable::make(ModuleSelection::all(Impl::reference));
+        const PixelProbe p = probe_pixel(box, box.view, settings, ref, 240, 225);
+        REQUIRE(p.hit);
+        REQUIRE(p.lights.size() == 1);
+        const LightProbe& lp = p.lights[0];
+        CHECK(lp.tested);
+        CHECK(lp.blocked);
+        REQUIRE(lp.rays.size() >= 1);
+        REQUIRE(lp.blocker);
+        CHECK(lp.blocker_name.rfind("triangle ", 0) == 0);
+        CHECK(lp.blocker->t > lp.rays[0].tmin);
+        CHECK(lp.blocker->t < lp.rays[0].tmax);
+        // The shadow stub casts no ray and answers "lit"
+        ModuleSelection stub_shadows = ModuleSelection::all(Impl::reference);
+        stub_shadows[Module::shadows] = Impl::student;
+        const PixelProbe s = probe_pixel(box, box.view, settings,
+                                         ModuleTable::make(stub_shadows), 240, 225);
+        REQUIRE(s.lights.size() == 1);
+        CHECK(s.lights[0].tested);
+        CHECK_FALSE(s.lights[0].blocked);
+        CHECK(s.lights[0].rays.empty());
+        CHECK_FALSE(s.lights[0].blocker);
+        // Shadows off: sampled, not tested; other modes: no lights recorded
+        settings.shadows = false;
+        const PixelProbe off = probe_pixel(box, box.view, settings, ref, 240, 225);
+        REQUIRE(off.lights.size() == 1);
+        CHECK_FALSE(off.lights[0].tested);
+        settings.mode = ShadingMode::normals;
+        CHECK(probe_pixel(box, box.view, settings, ref, 240, 225).lights.empty());
+#endif
     }
 }

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "raylab/image.h"
 #include "raylab/modules.h"
@@ -78,12 +79,25 @@ PinholeCamera make_camera(const ModuleTable& modules, const View& view);
 FrameStats render(const Scene& scene, const View& view, const RenderSettings& settings,
                   const ModuleTable& modules, Image& image);
 
+/// One light seen from a probed hit point: its sample and the shadow test's rays.
+struct LightProbe {
+    int light = 0;               ///< index into scene.lights
+    LightSample sample{};        ///< sample_point_light at the hit point
+    bool backfacing = false;     ///< light behind the surface: no shadow ray cast
+    bool tested = false;         ///< in_shadow ran (shadows on, light in front)
+    bool blocked = false;        ///< in_shadow's answer
+    std::vector<Ray> rays;       ///< the rays in_shadow asked the scene about
+    std::optional<Hit> blocker;  ///< closest hit on the first ray: what blocks it
+    std::string blocker_name;    ///< e.g. "triangle 12" (empty: nothing on the ray)
+};
+
 /// Everything about one pixel, for the viewer's inspector and for debugging.
 struct PixelProbe {
-    Vec2 uv{0.0f};           ///< image-plane point of the pixel centre
-    Ray ray;                 ///< the camera ray
-    std::optional<Hit> hit;  ///< its closest hit
-    Vec3 L{0.0f};            ///< the radiance the renderer stores
+    Vec2 uv{0.0f};                   ///< image-plane point of the pixel centre
+    Ray ray;                         ///< the camera ray
+    std::optional<Hit> hit;          ///< its closest hit
+    Vec3 L{0.0f};                    ///< the radiance the renderer stores
+    std::vector<LightProbe> lights;  ///< per light, in Lambert mode with a hit
 };
 
 /// Traces the centre of pixel (i, j) exactly as render() does.
