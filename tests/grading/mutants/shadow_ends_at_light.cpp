@@ -11,7 +11,8 @@ bool in_shadow(const Occluder& scene, const Vec3& x, const Vec3& n,
     const float scale = std::max({std::abs(x.x), std::abs(x.y), std::abs(x.z)});
     const float eps = 1e-4f + 8.0f * std::numeric_limits<float>::epsilon() * scale;
     const Vec3 o = x + eps * (glm::dot(n, sample.wi) >= 0.0f ? n : -n);
-    return scene.occluded(Ray{o, sample.wi, eps, glm::length(sample.wi * sample.r + x - o)});
+    return scene.occluded(
+        Ray{o, sample.wi, eps, glm::length(sample.wi * sample.r + x - o)});
 }
 
 }  // namespace raylab::student

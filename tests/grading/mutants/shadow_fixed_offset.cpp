@@ -10,7 +10,8 @@ bool in_shadow(const Occluder& scene, const Vec3& x, const Vec3& n,
                const LightSample& sample) {
     const float eps = 1e-4f;
     const Vec3 o = x + eps * (glm::dot(n, sample.wi) >= 0.0f ? n : -n);
-    return scene.occluded(Ray{o, sample.wi, eps, glm::length(sample.wi * sample.r + x - o) - eps});
+    return scene.occluded(
+        Ray{o, sample.wi, eps, glm::length(sample.wi * sample.r + x - o) - eps});
 }
 
 }  // namespace raylab::student
