@@ -4,8 +4,7 @@
 #
 # Usage: scripts/grade-class.sh DIR [-j N] [--out OUT] [--timeout S] [--points N]
 #   (also: ./scripts/dev.sh grade-class DIR [-j N])
-#   -j N          students graded at once (default 2); each of the N jobs has its own
-#                 scratch build, reused for the students it grades
+#   -j N          students graded at once (default 2)
 #   --out OUT     where the results go (default build/class/<name of DIR>); removed and
 #                 rewritten by each run
 #   --timeout S, --points N   passed to scripts/grade.sh
@@ -15,6 +14,10 @@
 # OUT/students/NAME/{results.json,junit.xml,summary.txt,grade.log}. One student's broken
 # build, crash or hang never stops the others. Two runs with different OUT folders run side
 # by side; a second run on the same OUT stops at once with a message (a lock on OUT).
+#
+# Environment: GRADE_BUILD_DIR=DIR, the build of the trusted graders shared by every job
+# and run (default build-grade/, as scripts/grade.sh). Files that are byte for byte the
+# same (untouched stubs, a regrade of the same class) are compiled once: see grade.sh.
 set -euo pipefail
 # shellcheck source=lib/common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
@@ -51,20 +54,21 @@ out=$(cd "$out" && pwd)
 exec 9>"$out/.lock"
 flock -n 9 || die "another grade-class run is writing $out; wait for it or use --out"
 
-# The modules: one per exercise file (the stubs ship in every copy)
-mapfile -t MODULES < <(find "$RAYLAB_ROOT/exercises" -maxdepth 1 -name '[0-9][0-9]_*.cpp' \
-    -printf '%f\n' | sed 's/\.cpp$//' | sort)
+# The modules, from the registry (as scripts/grade.sh)
+mapfile -t MODULES < <(sed -n 's/^RAYLAB_MODULE([a-z_0-9]*, "\([0-9][0-9]_[a-z_0-9]*\)".*/\1/p' \
+    "$RAYLAB_ROOT/framework/include/raylab/modules.def")
+((${#MODULES[@]})) || die "no modules in framework/include/raylab/modules.def"
+build=${GRADE_BUILD_DIR:-$RAYLAB_ROOT/build-grade}
 mapfile -t STUDENTS < <(find "$class" -mindepth 1 -maxdepth 1 -type d -printf '%f\n' | sort)
 ((${#STUDENTS[@]})) || die "$class has no hand-in folders"
 
-# Old results go; the scratch builds (OUT/builds/jobK) stay, so a second run rebuilds
-# only the exercise files
-rm -rf "$out/students" "$out/class.csv" "$out/class.md"
-mkdir -p "$out/students" "$out/builds"
+# Old results go (and the per-job builds of older versions of this script)
+rm -rf "$out/students" "$out/class.csv" "$out/class.md" "$out/builds"
+mkdir -p "$out/students"
 
-# Grades student $1 with scratch build $2; never fails
+# Grades student $1; never fails
 grade_one() {
-    local name=$1 build=$2 dest=$out/students/$1
+    local name=$1 dest=$out/students/$1
     mkdir -p "$dest"
     if ! SUBMISSION="$class/$name" GRADE_OUT="$dest" GRADE_BUILD_DIR="$build" \
         "$RAYLAB_ROOT/scripts/grade.sh" "${grade_args[@]}" </dev/null >"$dest/grade.log" 2>&1; then
@@ -74,13 +78,13 @@ grade_one() {
     rm -rf "$dest/images" # large, and the table does not need them
 }
 
-# Job k grades students k, k+N, k+2N, ... one after the other in its own scratch build
+# Job k grades students k, k+N, k+2N, ... one after the other
 step "Grading ${#STUDENTS[@]} hand-ins of $class, $jobs at a time"
 pids=()
 for ((k = 0; k < jobs; k++)); do
     (
         for ((i = k; i < ${#STUDENTS[@]}; i += jobs)); do
-            grade_one "${STUDENTS[i]}" "$out/builds/job$k"
+            grade_one "${STUDENTS[i]}"
             note "${STUDENTS[i]}: done"
         done
     ) &

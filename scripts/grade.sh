@@ -195,6 +195,45 @@ compile() {
     fi
 }
 
+# Files that are byte for byte the same (the untouched stubs of a class, a regrade) are
+# compiled and linked once. The key of an object hashes the compiler, its flags, the
+# sandbox, the framework headers and every staged file of the module; the key of a worker
+# hashes its object and everything linked with it. Only this script writes the cache (the
+# sandboxed compiler writes to the scratch folder), and entries unused for 30 days go.
+CACHE=$BUILD/object-cache
+mkdir -p "$CACHE"
+find "$CACHE" -type f -mtime +30 -delete 2>/dev/null || true
+hash_files() { (cd "$1" && find . -type f -print0 | LC_ALL=C sort -z | xargs -0 -r sha256sum); }
+key_of() { sha256sum | cut -d' ' -f1; }
+TOOL_KEY=$({ "$CXX" --version; printf '%s\n' "$CXXFLAGS" "$sandbox"; hash_files "$INCLUDE"; } | key_of)
+LINK_KEY=$({ sha256sum "$BUILD"/stub-objects/*.o "$WORKER_MAIN" "$CORE" | cut -d' ' -f1
+    printf '%s\n' "$LIBS" "$TOOL_KEY"; } | key_of)
+
+# Copies cache entry $1 to $2 (true when there is one)
+from_cache() { [[ -s $CACHE/$1 ]] && touch "$CACHE/$1" && cp "$CACHE/$1" "$2"; }
+# Stores $2 as cache entry $1 (atomically: several gradings share the cache)
+to_cache() { cp "$2" "$CACHE/$1.$$" && mv -f "$CACHE/$1.$$" "$CACHE/$1"; }
+
+# compile, through the cache
+compile_cached() {
+    local key
+    key=$({ echo "$TOOL_KEY"; hash_files "$(dirname "$1")"; } | key_of).o
+    from_cache "$key" "$2" && return 0
+    compile "$1" "$2" && to_cache "$key" "$2"
+}
+
+# Links worker $2 of module $1 from object $3 and the stubs of the other modules
+link_cached() {
+    local id=$1 worker=$2 obj=$3 key other stubs=()
+    key=$({ echo "$LINK_KEY $id"; sha256sum <"$obj"; } | key_of).worker
+    from_cache "$key" "$worker" && return 0
+    for other in "${MODULES[@]}"; do
+        [[ $other == "$id" ]] || stubs+=("$BUILD/stub-objects/$other.o")
+    done
+    # shellcheck disable=SC2086
+    "$CXX" -o "$worker" "$obj" "${stubs[@]}" "$WORKER_MAIN" "$CORE" $LIBS && to_cache "$key" "$worker"
+}
+
 if ((reference)); then
     for id in "${MODULES[@]}"; do
         ln -s "$BUILD/tests/grading/raylab-worker-reference" "$SCRATCH/workers/$id"
@@ -206,7 +245,7 @@ else
         obj=$SCRATCH/obj/$id.o
         log=$SCRATCH/obj/$id.log
         # shellcheck disable=SC2086
-        if ! compile "$SCRATCH/stage/$id/$id.cpp" "$obj" >"$log" 2>&1; then
+        if ! compile_cached "$SCRATCH/stage/$id/$id.cpp" "$obj" >"$log" 2>&1; then
             zero "$id" "$id.cpp does not compile: $(capped "$log" | grep -m 1 'error')
 $(capped "$log")"
             continue
@@ -217,13 +256,7 @@ $(capped "$log")"
             zero "$id" "$id.cpp refers to the reference solution ($refs), which is not allowed"
             continue
         fi
-        stubs=()
-        for other in "${MODULES[@]}"; do
-            [[ $other == "$id" ]] || stubs+=("$BUILD/stub-objects/$other.o")
-        done
-        # shellcheck disable=SC2086
-        if ! "$CXX" -o "$SCRATCH/workers/$id" "$obj" "${stubs[@]}" "$WORKER_MAIN" "$CORE" \
-            $LIBS >"$log" 2>&1; then
+        if ! link_cached "$id" "$SCRATCH/workers/$id" "$obj" >"$log" 2>&1; then
             zero "$id" "$id.cpp does not link with the framework (is a function missing, defined with another signature, or defined twice?)
 $(capped "$log" | grep -e 'undefined reference' -e 'multiple definition' -e 'error' | head -n 20)"
         fi

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes 20 hand-in folders shaped like a real class into OUT, and OUT.expected.csv:
-student, expected total (or "<80" where only an upper bound is certain), note to expect.
+student, expected total (or "<100" where only an upper bound is certain), note to expect.
 
 Correct modules are copies of solutions/ renamed into namespace raylab::student; the rest
 are stubs (exercises/), broken files, missing files, nested folders, CRLF and helper headers.
@@ -13,6 +13,12 @@ import sys
 
 ROOT, OUT = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
 MODULES = sorted(p.stem for p in (ROOT / "exercises").glob("[0-9][0-9]_*.cpp"))
+N = len(MODULES)
+
+
+def points(modules):
+    """The total of a hand-in with this many modules right (10 points each)."""
+    return str(10 * modules)
 
 
 def correct(mid):
@@ -53,11 +59,11 @@ def everything(make=correct, prefix=""):
 expected = []  # (student, total, note)
 for i in range(1, 6):
     write(f"s{i:02d}_correct", everything())
-    expected.append((f"s{i:02d}_correct", "80", ""))
+    expected.append((f"s{i:02d}_correct", points(N), ""))
 write("s06_nested", everything(prefix="handin/src/"))
-expected.append(("s06_nested", "80", "used handin/src/04_sphere.cpp"))
+expected.append(("s06_nested", points(N), "used handin/src/04_sphere.cpp"))
 write("s07_crlf", {f"{m}.cpp": correct(m).replace("\n", "\r\n") for m in MODULES})
-expected.append(("s07_crlf", "80", ""))
+expected.append(("s07_crlf", points(N), ""))
 files = everything()
 files["04_sphere.cpp"] = files["04_sphere.cpp"].replace(
     '#include "raylab/contract.h"', '#include "raylab/contract.h"\n#include "sphere_util.h"')
@@ -65,42 +71,42 @@ files["sphere_util.h"] = "#pragma once\n// A helper header a student keeps besid
 write("s08_helper_header", files)
 expected.append(("s08_helper_header", "any", ""))  # grade.sh decides whether it is staged
 write("s09_first_half", {f"{m}.cpp": correct(m) for m in MODULES[:4]})
-expected.append(("s09_first_half", "40", "05_triangle missing"))
+expected.append(("s09_first_half", points(4), "05_triangle missing"))
 write("s10_half_stubs", {f"{m}.cpp": (correct(m) if k < 4 else stub(m))
                          for k, m in enumerate(MODULES)})
-expected.append(("s10_half_stubs", "40", ""))
+expected.append(("s10_half_stubs", points(4), ""))
 files = everything()
 files["03_plane.cpp"] = broken("03_plane")
 write("s11_plane_broken", files)
-expected.append(("s11_plane_broken", "70", "03_plane did not compile"))
+expected.append(("s11_plane_broken", points(N - 1), "03_plane did not compile"))
 write("s12_all_broken", everything(make=broken))
-expected.append(("s12_all_broken", "0", "01_pixel_loop did not compile"))
+expected.append(("s12_all_broken", points(0), "01_pixel_loop did not compile"))
 (OUT / "s13_empty").mkdir(parents=True)
-expected.append(("s13_empty", "0", "01_pixel_loop missing"))
+expected.append(("s13_empty", points(0), "01_pixel_loop missing"))
 files = everything()
 files["08_shadows.cpp"] = always_false_shadow()
 write("s14_never_shadowed", files)
-expected.append(("s14_never_shadowed", "<80", ""))
+expected.append(("s14_never_shadowed", f"<{points(N)}", ""))
 files = everything()
 files["deep/old/04_sphere.cpp"] = broken("04_sphere")  # the shallowest file wins
 write("s15_two_copies", files)
-expected.append(("s15_two_copies", "80", ""))
+expected.append(("s15_two_copies", points(N), ""))
 write("s16_all_stubs", everything(make=stub))
-expected.append(("s16_all_stubs", "0", ""))
+expected.append(("s16_all_stubs", points(0), ""))
 files = everything()
 files["07_lambert.cpp"] = broken("07_lambert")
 files["08_shadows.cpp"] = broken("08_shadows")
 write("s17_last_two_broken", files)
-expected.append(("s17_last_two_broken", "60", "08_shadows did not compile"))
+expected.append(("s17_last_two_broken", points(N - 2), "08_shadows did not compile"))
 write("s18_nested_crlf", {f"ex/{m}.cpp": correct(m).replace("\n", "\r\n") for m in MODULES})
-expected.append(("s18_nested_crlf", "80", "used ex/01_pixel_loop.cpp"))
+expected.append(("s18_nested_crlf", points(N), "used ex/01_pixel_loop.cpp"))
 write("s19_only_camera", {"02_camera.cpp": correct("02_camera")})
-expected.append(("s19_only_camera", "10", "01_pixel_loop missing"))
+expected.append(("s19_only_camera", points(1), "01_pixel_loop missing"))
 files = everything()
 del files["05_triangle.cpp"]
 files["sub/05_triangle.cpp"] = correct("05_triangle")
 write("s20_one_nested", files)
-expected.append(("s20_one_nested", "80", "used sub/05_triangle.cpp"))
+expected.append(("s20_one_nested", points(N), "used sub/05_triangle.cpp"))
 
 with open(f"{OUT}.expected.csv", "w") as f:
     for row in expected:

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # ctest grading/mutants: each honest mistake in this folder fails the test case that names
 # it (or scores 0), each correct alternative scores full marks (expected.txt). Each file is
-# graded alone through scripts/grade.sh as the only file of a hand-in; one scratch build.
+# graded alone through scripts/grade.sh as the only file of a hand-in; one build of the
+# graders (env GRADE_BUILD_DIR, default WORKDIR/build).
 # Usage: check_mutants.sh ROOT WORKDIR
 set -uo pipefail
 root=$1 work=$2 here=$(cd "$(dirname "$0")" && pwd)
@@ -11,7 +12,7 @@ while IFS='|' read -r file module want; do
     [[ -z $file || $file == \#* ]] && continue
     rm -rf "$work/handin" "$work/out" && mkdir -p "$work/handin"
     cp "$here/$file" "$work/handin/$module.cpp"
-    SUBMISSION=$work/handin GRADE_OUT=$work/out GRADE_BUILD_DIR=$work/build \
+    SUBMISSION=$work/handin GRADE_OUT=$work/out GRADE_BUILD_DIR=${GRADE_BUILD_DIR:-$work/build} \
         "$root/scripts/grade.sh" >"$work/$file.log" 2>&1 || { echo "FAIL $file: grade.sh failed"; fail=1; continue; }
     verdict=$(python3 - "$work/out" "$module" <<'PY'
 import json, sys, xml.etree.ElementTree as ET
