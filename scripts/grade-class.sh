@@ -45,6 +45,7 @@ done
 [[ -n $class ]] || { usage >&2; die "which class folder?"; }
 [[ -d $class ]] || die "$class is not a folder"
 [[ $jobs =~ ^[1-9][0-9]*$ ]] || die "-j needs a positive number, not '$jobs'"
+have jq || die "jq is missing (it reads each student's results.json): scripts/install-deps.sh libs"
 class=$(cd "$class" && pwd)
 out=${out:-$RAYLAB_ROOT/build/class/$(basename "$class")}
 mkdir -p "$out"
@@ -118,9 +119,11 @@ student_notes() {
 
 # Points of module $2 in student $1's results.json (empty when there is none)
 points_of() {
+    local results=$out/students/$1/results.json
+    [[ -f $results ]] || return 0
     jq -r --arg id "$2" \
-        '[.tests[] | select(.name | startswith($id + ":")) | .score] | add // 0' \
-        "$out/students/$1/results.json" 2>/dev/null || true
+        '[.tests[] | select(.name | startswith($id + ":")) | .score] | add // 0' "$results" ||
+        die "cannot read $results"
 }
 
 step "Writing the class table"

@@ -4,7 +4,8 @@
 # Usage: scripts/install-deps.sh [--check | --list] [GROUP...]
 #   GROUP    build    compiler and build tools: g++ make cmake ninja-build pkg-config
 #            libs     libraries: GLM, tinyobjloader, stb, doctest, Dear ImGui, GLFW, GL headers,
-#                     nlohmann-json, libseccomp and bubblewrap (the grader's sandbox)
+#                     nlohmann-json, libseccomp and bubblewrap (the grader's sandbox),
+#                     jq, zip and unzip (class tables, the Gradescope package)
 #            gui      running the GUI tests headless: Xvfb, xauth, Mesa, xdotool (alias gui-test)
 #            format   clang-format (the style check of `scripts/dev.sh test`)
 #            fuzz     clang 14 and its runtimes: libFuzzer targets, the stress matrix
@@ -27,8 +28,11 @@ group_packages() {
         build) echo g++ make cmake ninja-build pkg-config ;;
         # libgl-dev/libopengl-dev: the GL headers and libraries FindOpenGL (GLVND) and GLFW use;
         # libseccomp-dev and bubblewrap: the grader's sandbox (docs/instructor-guide.md)
+        # jq reads the graders' results.json for the class table; zip/unzip make and test
+        # the Gradescope package
         libs) echo libglm-dev libtinyobjloader-dev libstb-dev doctest-dev libimgui-dev \
-            libglfw3-dev libgl-dev libopengl-dev nlohmann-json3-dev libseccomp-dev bubblewrap ;;
+            libglfw3-dev libgl-dev libopengl-dev nlohmann-json3-dev libseccomp-dev bubblewrap \
+            jq zip unzip ;;
         # xauth is only recommended by xvfb, but xvfb-run needs it; Mesa's llvmpipe renders GL
         gui | gui-test) echo xvfb xauth libgl1-mesa-dri xdotool ;;
         format) echo clang-format ;;
