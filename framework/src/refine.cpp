@@ -80,6 +80,18 @@ Vec3 refine_on_triangle(const Vec3& x, const Ray& r, const Vec3& v0, const Vec3&
     return ray_onto_plane(x, r, n, glm::dot(a, n));
 }
 
+Vec3 refine_sphere_normal(const Vec3& x, const Vec3& n, const Sphere& sphere) {
+    const DVec3 f = DVec3(x) - DVec3(sphere.c);
+    const double len = glm::length(f), n_len = glm::length(DVec3(n));
+    if (!(len > 0.0) || !std::isfinite(len) || !(std::abs(n_len - 1.0) < 0x1p-4))
+        return n;
+    const DVec3 exact = f / len;
+    const double cos = glm::dot(exact, DVec3(n)) / n_len;
+    if (cos >= 0.5) return Vec3(exact);
+    if (cos <= -0.5) return Vec3(-exact);
+    return n;
+}
+
 Vec3 accept_refined(const Vec3& x, const Vec3& refined, const Ray& r, float t) {
     if (!is_finite(refined)) return x;
     const float scale = max_abs(r.o) + std::abs(t) + max_abs(x);
