@@ -147,14 +147,21 @@ TEST_SUITE("stress shadows") {
                         const Vec3 side = kind == 0 ? up : rng.direction();
                         const Vec3 eye = centre + far * direction_near(rng, side, 0.3f);
                         const Vec3 target = centre + rng.in_box(-1.0f, 1.0f);
+                        // Drawn one per statement: argument order is unspecified
+                        const float dist = rng.uniform(1.5f, 10.0f);
                         const Vec3 light =
-                            centre + rng.uniform(1.5f, 10.0f) *
-                                         (kind == 0 ? direction_near(rng, up, 0.01f)
-                                                    : rng.direction());
+                            centre + dist * (kind == 0 ? direction_near(rng, up, 0.01f)
+                                                       : rng.direction());
                         const Ray r{eye, glm::normalize(target - eye), 0.0f, kInfinity};
-                        const Seen seen = shade(scene, r, light);
+                        Hit hit;
+                        const Seen seen = shade(scene, r, light, &hit);
                         lit += seen == Seen::lit;
                         acne += seen == Seen::shadowed;
+                        if (seen == Seen::shadowed)
+                            MESSAGE("ray " << show(r.o) << " " << show(r.w) << " hits "
+                                           << show(hit.position) << ", light "
+                                           << show(light) << " ns " << show(hit.ns)
+                                           << " n " << show(hit.n));
                     }
                     MESSAGE(kinds[kind] << " at " << at << ", camera " << far << ": "
                                         << acne << " of " << lit + acne
@@ -188,8 +195,8 @@ TEST_SUITE("stress shadows") {
             const Vec3 x(exact);
             const float d = delta(x);
             const float gap = 20.0f * d;
-            const Vec3 light =
-                x + rng.uniform(0.5f, 20.0f) * scale * direction_near(rng, n, 0.5f);
+            const float dist = rng.uniform(0.5f, 20.0f);
+            const Vec3 light = x + dist * scale * direction_near(rng, n, 0.5f);
             const int kind = seed / 6 % 3;
             INFO("seed " << seed << ": x = " << show(x) << ", n = " << show(n)
                          << ", delta " << d << ", gap " << gap << ", occluder kind "
@@ -333,8 +340,8 @@ TEST_SUITE("stress shadows") {
                 double worst = 0.0;
                 int checked = 0;
                 for (int k = 0; k < 2000; ++k) {
-                    const Vec3 target =
-                        p0 + Vec3(rng.uniform(-3, 3), 0.0f, rng.uniform(-3, 3));
+                    const float u = rng.uniform(-3, 3);
+                    const Vec3 target = p0 + Vec3(u, 0.0f, rng.uniform(-3, 3));
                     const Ray r{eye, glm::normalize(target - eye), 0.0f, kInfinity};
                     const auto hit = scene.closest_hit(m, r, counters);
                     REQUIRE(hit);
