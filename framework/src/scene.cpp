@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "raylab/error.h"
+#include "raylab/refine.h"
 
 namespace raylab {
 
@@ -37,6 +38,30 @@ Aabb triangle_box(const SceneTriangle& t) {
 void finish(Hit& hit, const Ray& r, int material, const Vec3& shading_normal) {
     hit.material = material;
     hit.ns = glm::dot(shading_normal, r.w) > 0.0f ? -shading_normal : shading_normal;
+}
+
+// The hit recomputed in double on the primitive it lies on (raylab/refine.h, issue 8
+// B4): its point, and a sphere's normal, which the module derived from its float point.
+// source is -1 - index for a plane, the BVH primitive index for a sphere or triangle;
+// ns is the shading normal, a sphere's geometric one
+void refine_hit(const Scene& s, std::int64_t source, Hit& hit, const Ray& r, Vec3& ns) {
+    const Vec3 x = hit.position;
+    const std::int64_t sphere_count = static_cast<std::int64_t>(s.spheres.size());
+    Vec3 on = x;
+    if (source < 0) {
+        on = refine_on_plane(x, r, s.planes[static_cast<size_t>(-1 - source)].plane);
+    } else if (source < sphere_count) {
+        const Sphere& sphere = s.spheres[static_cast<size_t>(source)].sphere;
+        on = refine_on_sphere(x, r, hit.t, sphere);
+        hit.position = accept_refined(x, on, r, hit.t);
+        if (hit.position != x)
+            ns = hit.n = refine_sphere_normal(hit.position, hit.n, sphere);
+        return;
+    } else {
+        const SceneTriangle& t = s.triangles[static_cast<size_t>(source - sphere_count)];
+        on = refine_on_triangle(x, r, t.v0, t.v1, t.v2);
+    }
+    hit.position = accept_refined(x, on, r, hit.t);
 }
 
 Vec3 interpolated_normal(const SceneTriangle& tri, const Hit& hit) {
@@ -141,6 +166,7 @@ std::optional<Hit> Scene::closest_hit(const ModuleTable& modules, const Ray& r,
     std::optional<Hit> best;
     int best_material = 0;
     Vec3 best_ns(0.0f);
+    std::int64_t best_source = 0;  // see refine_hit
     for (const ScenePlane& p : planes) {
         ++counters.intersection_tests;
         if (auto hit = modules.intersect_plane(ray, p.plane)) {
@@ -148,6 +174,7 @@ std::optional<Hit> Scene::closest_hit(const ModuleTable& modules, const Ray& r,
             best = hit;
             best_material = p.material;
             best_ns = hit->n;
+            best_source = -1 - (&p - planes.data());
         }
     }
     const std::uint32_t sphere_count = static_cast<std::uint32_t>(spheres.size());
@@ -163,6 +190,7 @@ std::optional<Hit> Scene::closest_hit(const ModuleTable& modules, const Ray& r,
                     best = hit;
                     best_material = s.material;
                     best_ns = hit->n;
+                    best_source = prim;
                 }
             } else {
                 const SceneTriangle& t = triangles[prim - sphere_count];
@@ -171,12 +199,16 @@ std::optional<Hit> Scene::closest_hit(const ModuleTable& modules, const Ray& r,
                     best = hit;
                     best_material = t.material;
                     best_ns = interpolated_normal(t, *hit);
+                    best_source = prim;
                 }
             }
             return false;
         },
         counters.bvh_nodes);
-    if (best) finish(*best, r, best_material, best_ns);
+    if (best) {
+        refine_hit(*this, best_source, *best, r, best_ns);
+        finish(*best, r, best_material, best_ns);
+    }
     return best;
 }
 
