@@ -8,7 +8,8 @@
 #                         [--private DIR]
 #   (also: ./scripts/dev.sh grade, make grade, make grade-reference)
 #   --reference        grade the reference solutions (solutions/) instead of exercises
-#   --timeout SECONDS  time limit per module (default 10)
+#   --timeout SECONDS  CPU time limit per module (default 10; its clock time may be 6 times
+#                      that, so that a busy machine does not fail honest code)
 #   --points N         points per module (default 10)
 #   --expect MODE      exit 1 unless the scores are as expected: full, not-started (for CI
 #                      and scripts/make-student-release.sh; see raylab-grade --help)
