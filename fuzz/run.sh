@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Runs the libFuzzer targets on copies of the seed corpus (docs/fuzzing.md).
+# Runs the libFuzzer targets on copies of the seed corpus (docs/architecture.md, "Fuzzing";
+# ./scripts/dev.sh fuzz SECONDS builds them and calls this).
 # Usage: fuzz/run.sh BUILD_DIR SECONDS [TARGET...]   (targets: obj view options)
 # Crashes land in BUILD_DIR/artifacts/; keep each as fuzz/crashes/TARGET-NAME and it is
 # replayed by every later run. Exit status: non-zero when a target failed.

@@ -150,12 +150,13 @@ for name in "${STUDENTS[@]}"; do
     done
     notes=$(student_notes "$name")
     {
-        printf '%s' "$name"
+        # A folder name with a comma or a quote is quoted (RFC 4180)
+        if [[ $name == *[,\"]* ]]; then printf '"%s"' "${name//\"/\"\"}"; else printf '%s' "$name"; fi
         printf ',%s' "${row[@]}"
         printf ',%s,"%s"\n' "$total" "${notes//\"/\"\"}"
     } >>"$csv"
     {
-        printf '| %s |' "$name"
+        printf '| %s |' "${name//|/\\|}"
         printf ' %s |' "${row[@]}"
         printf ' %s | %s |\n' "$total" "${notes//|/\\|}"
     } >>"$md"

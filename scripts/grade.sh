@@ -8,7 +8,8 @@
 #                         [--private DIR]
 #   (also: ./scripts/dev.sh grade, make grade, make grade-reference)
 #   --reference        grade the reference solutions (solutions/) instead of exercises
-#   --timeout SECONDS  time limit per module (default 10)
+#   --timeout SECONDS  CPU time limit per module (default 10; its clock time may be 6 times
+#                      that, so that a busy machine does not fail honest code)
 #   --points N         points per module (default 10)
 #   --expect MODE      exit 1 unless the scores are as expected: full, not-started (for CI
 #                      and scripts/make-student-release.sh; see raylab-grade --help)
@@ -26,6 +27,12 @@
 #   GRADE_BUILD_DIR=DIR  the build of the trusted graders (default build-grade/), shared
 #                      by concurrent runs (a lock serialises its updates)
 #   GRADE_PRIVATE=DIR, GRADE_TIMEOUT=S, GRADE_POINTS=N  defaults for the options
+#   GRADE_COMPILE_MEMORY_MB=N  address space of the sandboxed compiler (default 2048; it
+#                      also gets 120 s of CPU and writes 64 MiB at most)
+#   RAYLAB_SANDBOX=none  compile and run the hand-in without bubblewrap, as happens where
+#                      it cannot start; as root the compiler and worker then run as nobody,
+#                      and solutions/, the graders' build and --private DIR are closed to
+#                      other users (chmod go-rwx)
 #
 # Several gradings may run at once (each has its own scratch folder; give each its own
 # GRADE_OUT). Exit status: 0 when grading ran (whatever the scores), 1 when it could not
@@ -40,6 +47,8 @@ usage() { sed -n '2,/^[^#]/{/^#/s/^# \{0,1\}//p}' "$0"; }
 
 reference=0
 timeout=${GRADE_TIMEOUT:-10}
+# Address space of the sandboxed compiler, in MiB (a 64 MiB object file at most)
+COMPILE_MEMORY_MB=${GRADE_COMPILE_MEMORY_MB:-2048}
 points=${GRADE_POINTS:-10}
 private=${GRADE_PRIVATE:-}
 expect=''
@@ -59,6 +68,16 @@ while (($#)); do
     esac
     shift
 done
+
+# Checked before anything is built
+[[ $timeout =~ ^[0-9]{1,4}(\.[0-9]+)?$ && $timeout != 0 && ! $timeout =~ ^0+(\.0*)?$ ]] ||
+    die "--timeout needs a positive number of seconds (at most 9999), not '$timeout'"
+[[ $points =~ ^[0-9]{1,6}(\.[0-9]+)?$ ]] || die "--points needs a number, not '$points'"
+[[ -z $expect || $expect =~ ^(full|not-started|faults)$ ]] ||
+    die "--expect takes full, not-started or faults, not '$expect'"
+[[ -z $private || -d $private ]] || die "--private $private is not a folder"
+[[ $COMPILE_MEMORY_MB =~ ^[1-9][0-9]{2,5}$ ]] ||
+    die "GRADE_COMPILE_MEMORY_MB needs a number of MiB (at least 100), not '$COMPILE_MEMORY_MB'"
 
 have cmake || die "cmake is missing: scripts/install-deps.sh build"
 have ninja || die "ninja is missing: scripts/install-deps.sh build"
@@ -171,8 +190,11 @@ fi
 # the worker's sandbox does, tests/grading/worker_client.cpp)
 sandbox=none
 namespaces=()
+# RAYLAB_SANDBOX=none (as for the worker, worker_client.cpp) grades without namespaces, as
+# where bubblewrap cannot start (Docker's default profile)
 for try in "--unshare-all" \
     "--unshare-pid --unshare-net --unshare-ipc --unshare-uts --unshare-cgroup-try --cap-drop ALL"; do
+    [[ ${RAYLAB_SANDBOX:-auto} != none ]] || break
     [[ $try == --unshare-all || $EUID == 0 ]] || continue
     read -ra namespaces <<<"$try"
     if bwrap "${namespaces[@]}" --die-with-parent --ro-bind /usr /usr --symlink usr/lib /lib \
@@ -183,10 +205,13 @@ for try in "--unshare-all" \
 done
 
 # Compiles $1 (a staged file) to $2: in a sandbox that sees /usr, framework/include and
-# the staged folder only, so that no path leads to solutions/
+# the staged folder only, so that no path leads to solutions/. The compiler gets the
+# limits of a worker too: an endless #include "/dev/zero" or a huge array would otherwise
+# take all the grading machine's memory or disk for the 120 s of its time limit
 compile() {
     local src=$1 obj=$2 dir
     dir=$(dirname "$src")
+    ulimit -v $((COMPILE_MEMORY_MB * 1024)) -f $((64 * 1024)) -t 120 -c 0
     if [[ $sandbox == bwrap ]]; then
         bwrap "${namespaces[@]}" --die-with-parent --new-session --ro-bind /usr /usr \
             --symlink usr/lib /lib --symlink usr/lib64 /lib64 --symlink usr/bin /bin \
@@ -198,12 +223,41 @@ compile() {
             -o "/out/$(basename "$obj")"
     else
         # No namespaces: a copy of the headers, so that no relative path from the include
-        # folder reaches solutions/ (an absolute path still would: the nm check remains)
+        # folder reaches solutions/. An absolute path still would, for a compiler that
+        # may read it: as root the compiler runs as nobody, and solutions/ is closed to
+        # others (see below)
         [[ -d $SCRATCH/include ]] || cp -r "$INCLUDE" "$SCRATCH/include"
-        (cd "$dir" && timeout 120 env -i PATH=/usr/bin "$CXX" $CXXFLAGS -I"$SCRATCH/include" \
-            -c "$src" -o "$obj")
+        if ((EUID == 0)); then
+            local out
+            out=$SCRATCH/nobody/$(basename "$obj" .o)
+            mkdir -p "$out"
+            chmod 755 "$SCRATCH" "$SCRATCH/stage" "$SCRATCH/nobody"
+            chmod -R a+rX "$SCRATCH/include" "$dir"
+            chown 65534:65534 "$out"
+            # shellcheck disable=SC2086
+            (cd "$dir" && timeout 120 env -i PATH=/usr/bin HOME=/ \
+                setpriv --reuid=65534 --regid=65534 --clear-groups \
+                "$CXX" $CXXFLAGS -I"$SCRATCH/include" -c "$src" -o "$out/out.o") &&
+                cp "$out/out.o" "$obj"
+        else
+            # shellcheck disable=SC2086
+            (cd "$dir" && timeout 120 env -i PATH=/usr/bin "$CXX" $CXXFLAGS \
+                -I"$SCRATCH/include" -c "$src" -o "$obj")
+        fi
     fi
 }
+
+# Without namespaces a root grader closes solutions/, its own build and the private
+# cases to other users: the hand-in's compiler and worker run as nobody, and must not
+# read the reference's source or objects, nor the secret seed
+if [[ $sandbox == none && $EUID == 0 ]]; then
+    for d in "$RAYLAB_ROOT/solutions" "$BUILD" ${private:+"$private"}; do
+        if [[ -d $d && -n $(find "$d" -maxdepth 0 -perm /o=rwx) ]]; then
+            chmod go-rwx "$d"
+            note "no namespaces here: $d is now closed to other users (chmod go-rwx)"
+        fi
+    done
+fi
 
 # Files that are byte for byte the same (the untouched stubs of a class, a regrade) are
 # compiled and linked once. The key of an object hashes the compiler, its flags, the
@@ -215,7 +269,7 @@ mkdir -p "$CACHE"
 find "$CACHE" -type f -mtime +30 -delete 2>/dev/null || true
 hash_files() { (cd "$1" && find . -type f -print0 | LC_ALL=C sort -z | xargs -0 -r sha256sum); }
 key_of() { sha256sum | cut -d' ' -f1; }
-TOOL_KEY=$({ "$CXX" --version; printf '%s\n' "$CXXFLAGS" "$sandbox"; hash_files "$INCLUDE"; } | key_of)
+TOOL_KEY=$({ "$CXX" --version; printf '%s\n' "$CXXFLAGS" "$sandbox" "compiled-as-nobody-when-root"; hash_files "$INCLUDE"; } | key_of)
 LINK_KEY=$({ sha256sum "$BUILD"/stub-objects/*.o "$WORKER_MAIN" "$CORE" | cut -d' ' -f1
     printf '%s\n' "$LIBS" "$TOOL_KEY"; } | key_of)
 
@@ -224,12 +278,12 @@ from_cache() { [[ -s $CACHE/$1 ]] && touch "$CACHE/$1" && cp "$CACHE/$1" "$2"; }
 # Stores $2 as cache entry $1 (atomically: several gradings share the cache)
 to_cache() { cp "$2" "$CACHE/$1.$$" && mv -f "$CACHE/$1.$$" "$CACHE/$1"; }
 
-# compile, through the cache
+# compile (in a subshell: its limits stay there), through the cache
 compile_cached() {
     local key
     key=$({ echo "$TOOL_KEY"; hash_files "$(dirname "$1")"; } | key_of).o
     from_cache "$key" "$2" && return 0
-    compile "$1" "$2" && to_cache "$key" "$2"
+    (compile "$1" "$2") && to_cache "$key" "$2"
 }
 
 # Links worker $2 of module $1 from object $3 and the stubs of the other modules
@@ -246,7 +300,7 @@ link_cached() {
 
 if ((reference)); then
     for id in "${MODULES[@]}"; do
-        ln -s "$BUILD/tests/grading/raylab-worker-reference" "$SCRATCH/workers/$id"
+        cp "$BUILD/tests/grading/raylab-worker-reference" "$SCRATCH/workers/$id"
     done
 else
     step "Compiling each exercise file on its own and linking its worker"
@@ -255,8 +309,17 @@ else
         obj=$SCRATCH/obj/$id.o
         log=$SCRATCH/obj/$id.log
         # shellcheck disable=SC2086
-        if ! compile_cached "$SCRATCH/stage/$id/$id.cpp" "$obj" >"$log" 2>&1; then
-            zero "$id" "$id.cpp does not compile: $(capped "$log" | grep -m 1 'error')
+        status=0
+        compile_cached "$SCRATCH/stage/$id/$id.cpp" "$obj" >"$log" 2>&1 || status=$?
+        if ((status != 0)); then
+            first=$(capped "$log" | grep -m 1 -E 'error|out of memory|memory exhausted') ||
+                first=$(capped "$log" | grep -m 1 .) ||
+                first="the compiler stopped (status $status) without a message"
+            if grep -q -E 'out of memory|memory exhausted|File size limit' "$log" ||
+                ((status == 124 || status > 128)); then
+                first="$first (the compiler's limits: $COMPILE_MEMORY_MB MiB of memory, 120 s, a 64 MiB object)"
+            fi
+            zero "$id" "$id.cpp does not compile: $first
 $(capped "$log")"
             continue
         fi
@@ -267,15 +330,24 @@ $(capped "$log")"
             continue
         fi
         # Nothing of the hand-in may run before the worker's seccomp filter (a constructor
-        # of priority 101 in worker_main.cpp): no constructor priorities, no code in .init
-        # or .preinit_array, no ifunc resolvers (they run while the loader relocates)
+        # of priority 101 in worker_main.cpp): no constructor priorities (GNU ld sorts any
+        # .init_array.SUFFIX, ".init_array.00001x" too, by the number it starts with), no
+        # code in .init or .preinit_array, no ifunc resolvers (they run while the loader
+        # relocates), and no definition of a C-level or C++ runtime symbol (malloc,
+        # operator new, std::...): the shared libraries' own initializers, which run before
+        # the worker's, would call the hand-in's copy
         early=$({
             readelf -SW "$obj" | sed -n 's/^ *\[ *[0-9]*\] \([^ ]*\).*/\1/p' |
-                grep -E '^(\.rela)?\.(preinit_array|init|ctors|init_array\.[0-9]+|ctors\.[0-9]+)$'
+                grep -E '^(\.rela)?\.(preinit_array|init|ctors|dtors|init_array\..*|ctors\..*|preinit_array\..*)$'
             readelf -sW "$obj" | awk '$4 == "IFUNC" { print "ifunc " $8 }'
+            nm -g --defined-only "$obj" | awk 'NF == 3 && $2 ~ /^[TWi]$/ && $3 !~ /^_Z/ {
+                print "symbol " $3 }'
+            nm -g --defined-only "$obj" | awk 'NF == 3 && ($3 ~ /^_Z(nw|na|dl|da)/ ||
+                ($2 !~ /^[WVu]$/ && $3 ~ /^_Z(N|NK)?(St|Sa|Sb|Ss|Si|So|Sd|N9__gnu_cxx|N10__cxxabiv1)/)) {
+                    print "symbol " $3 }' | c++filt
         } | sort -u | paste -sd ' ') || true
         if [[ -n $early ]]; then
-            zero "$id" "$id.cpp has code that would run before the grader's sandbox is complete ($early): constructor priorities, .init sections and ifuncs are not allowed"
+            zero "$id" "$id.cpp has code that would run before the grader's sandbox is complete ($early): constructor priorities, .init sections, ifuncs and definitions of C library or C++ runtime functions are not allowed"
             continue
         fi
         if ! link_cached "$id" "$SCRATCH/workers/$id" "$obj" >"$log" 2>&1; then
@@ -283,8 +355,8 @@ $(capped "$log")"
 $(capped "$log" | grep -e 'undefined reference' -e 'multiple definition' -e 'error' | head -n 20)"
         fi
     done
-    chmod -R a+rX "$SCRATCH"
 fi
+chmod -R a+rX "$SCRATCH" # a worker without namespaces runs as nobody
 
 # ---- Grading ---------------------------------------------------------------------------
 

@@ -38,8 +38,10 @@ case ${1:-} in -h | --help) usage; exit 0 ;; esac
 absolute() { [[ $1 == /* ]] && printf '%s' "$1" || printf '%s/%s' "$PWD" "$1"; }
 OUT=$(absolute "${1:-$RAYLAB_ROOT/build/student-release/raylab}")
 BUILD=$(absolute "${RELEASE_BUILD_DIR:-$RAYLAB_ROOT/build-student-release}")
-MODULES=(01_pixel_loop 02_camera 03_plane 04_sphere 05_triangle 06_point_light 07_lambert
-    08_shadows)
+# The modules, from the registry (as scripts/grade.sh)
+mapfile -t MODULES < <(sed -n 's/^RAYLAB_MODULE([a-z_0-9]*, "\([0-9][0-9]_[a-z_0-9]*\)".*/\1/p' \
+    "$RAYLAB_ROOT/framework/include/raylab/modules.def")
+((${#MODULES[@]})) || die "no modules in framework/include/raylab/modules.def"
 t0=$SECONDS
 
 have cmake || die "cmake is missing: scripts/install-deps.sh build"
@@ -109,7 +111,7 @@ mkdir -p "$BUILD"
 cmake -S "$RAYLAB_ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WITH_GUI=OFF \
     -DRAYLAB_EXERCISES_DIR="$RAYLAB_ROOT/exercises" >"$BUILD/release-configure.log" 2>&1 ||
     die "configuring $BUILD/ failed: see $BUILD/release-configure.log"
-ninja -C "$BUILD" raylab-grading-tests >"$BUILD/release-build.log" 2>&1 ||
+ninja -C "$BUILD" raylab-grading-tests raylab-worker-reference >"$BUILD/release-build.log" 2>&1 ||
     die "building the graders failed: see $BUILD/release-build.log"
 RAYLAB_GRADE_IMPL=reference RAYLAB_GOLDEN_WRITE="$OUT/tests/data/golden" \
     "$BUILD/tests/grading/raylab-grading-tests" --no-colors >"$BUILD/release-golden.log" 2>&1 ||

@@ -117,6 +117,12 @@ std::vector<std::string_view> split_lines(std::string_view text, std::size_t max
         if (end == std::string_view::npos) end = text.size();
         std::string_view line = text.substr(0, end);
         if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        if (line.find('\r') != std::string_view::npos) {
+            // Classic Mac line ends (CR only) would read as one long line of words
+            throw Error(where(source, lines.size() + 1) +
+                        "a carriage return (CR) inside the line: line ends must be LF "
+                        "or CRLF, not CR alone");
+        }
         if (line.size() > max_line) {
             throw Error(where(source, lines.size() + 1) + "line longer than " +
                         std::to_string(max_line) + " bytes");

@@ -181,6 +181,9 @@ void ObjChecker::face(const Words& w, const std::string& at) {
         if (s1 == std::string_view::npos) continue;
         const std::string_view t =
             c.substr(s1 + 1, s2 == std::string_view::npos ? s2 : s2 - s1 - 1);
+        if (t.empty() && s2 == std::string_view::npos)  // "1/": tinyobjloader misreads it
+            throw Error(at + "face corner " + std::to_string(k + 1) + ": " +
+                        word_text(c) + " is not v, v/t, v//n or v/t/n");
         out += "/";
         if (!t.empty())
             out += std::to_string(index(t, vt_, "texture coordinate", at, k + 1));

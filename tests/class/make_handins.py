@@ -69,7 +69,7 @@ files["04_sphere.cpp"] = files["04_sphere.cpp"].replace(
     '#include "raylab/contract.h"', '#include "raylab/contract.h"\n#include "sphere_util.h"')
 files["sphere_util.h"] = "#pragma once\n// A helper header a student keeps beside the exercise\n"
 write("s08_helper_header", files)
-expected.append(("s08_helper_header", "any", ""))  # grade.sh decides whether it is staged
+expected.append(("s08_helper_header", points(N), ""))  # the header beside it is staged
 write("s09_first_half", {f"{m}.cpp": correct(m) for m in MODULES[:4]})
 expected.append(("s09_first_half", points(4), "05_triangle missing"))
 write("s10_half_stubs", {f"{m}.cpp": (correct(m) if k < 4 else stub(m))
@@ -86,7 +86,7 @@ expected.append(("s13_empty", points(0), "01_pixel_loop missing"))
 files = everything()
 files["08_shadows.cpp"] = always_false_shadow()
 write("s14_never_shadowed", files)
-expected.append(("s14_never_shadowed", f"<{points(N)}", ""))
+expected.append(("s14_never_shadowed", points(N - 1), ""))  # a constant earns nothing
 files = everything()
 files["deep/old/04_sphere.cpp"] = broken("04_sphere")  # the shallowest file wins
 write("s15_two_copies", files)

@@ -70,6 +70,12 @@ TEST_SUITE("input") {
         CHECK(lines[3] == "c");
         CHECK_THROWS_WITH_AS(split_lines("ok\n" + std::string(11, 'x'), 10, "t"),
                              "t:2: line longer than 10 bytes", Error);
+        // Classic Mac line ends (CR alone) are named, not read as one line of words
+        CHECK_THROWS_WITH_AS(
+            split_lines("ok\neye 0 0 3\rfov 40\r", 100, "t"),
+            "t:2: a carriage return (CR) inside the line: line ends must "
+            "be LF or CRLF, not CR alone",
+            Error);
     }
 
     TEST_CASE("printable escapes control characters and bytes above 0x7e") {

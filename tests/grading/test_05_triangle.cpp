@@ -120,6 +120,22 @@ TEST_SUITE("05_triangle") {
         check(Ray{Vec3(-1, 0.2f, 0), Vec3(1, 0, 0)}, kV0, kV1, kV2, std::nullopt);
     }
 
+    TEST_CASE("small triangles, legs down to 1e-3, are hit") {
+        // The determinant shrinks with the square of the size (1e-6 here): a fixed
+        // threshold on it such as 1e-3 makes every triangle with legs below about 0.03
+        // vanish. Near the origin and away from it
+        for (const float s : {1e-3f, 1e-2f}) {
+            for (const Vec3& at : {Vec3(0.0f), Vec3(1, 1, 0)}) {
+                const Vec3 v0 = at, v1 = at + Vec3(s, 0, 0), v2 = at + Vec3(0, s, 0);
+                const Vec3 p = at + Vec3(0.25f * s, 0.25f * s, 0);
+                const Ray r{p + Vec3(0, 0, 2), kDown};
+                check(
+                    r, v0, v1, v2,
+                    make_hit(2.0f, r.o + 2.0f * r.w, Vec3(0, 0, 1), Vec2(0.25f, 0.25f)));
+            }
+        }
+    }
+
     TEST_CASE("a degenerate triangle with collinear vertices is never hit") {
         // All three vertices on the x axis: zero area, no normal
         check(Ray{Vec3(0.5f, 0, 1), kDown}, Vec3(0.0f), Vec3(1, 0, 0), Vec3(2, 0, 0),

@@ -35,8 +35,13 @@ LightSample light(const Vec3& wi, const Vec3& Li) {
 }  // namespace
 
 TEST_SUITE("07_lambert") {
+    // Each case whose answer is the emission alone is paired with one where the light
+    // counts, so that a lambert that returns Le earns nothing
     TEST_CASE("without lights a surface shows only its emission Le") {
         check(Vec3(0.5f), Vec3(0.1f, 0.2f, 0.3f), kUp, {}, Vec3(0.1f, 0.2f, 0.3f));
+        // Paired: one light straight above adds rho / pi * Li = 0.5 / pi
+        check(Vec3(0.5f), Vec3(0.1f, 0.2f, 0.3f), kUp, {light(kUp, Vec3(1.0f))},
+              Vec3(0.1f, 0.2f, 0.3f) + Vec3(0.15915494f));
     }
 
     TEST_CASE("a light straight above reflects rho / pi times Li") {
@@ -62,6 +67,8 @@ TEST_SUITE("07_lambert") {
     TEST_CASE("only a light below the horizon: the surface stays black, not negative") {
         check(Vec3(0.8f), Vec3(0.0f), kUp, {light(Vec3(0, -1, 0), Vec3(5.0f))},
               Vec3(0.0f));
+        // Paired: the same light above the surface gives 0.8 / pi * 5
+        check(Vec3(0.8f), Vec3(0.0f), kUp, {light(kUp, Vec3(5.0f))}, Vec3(1.27323954f));
     }
 
     TEST_CASE("the light of several lights adds up") {
@@ -93,6 +100,8 @@ TEST_SUITE("07_lambert") {
     }
 
     TEST_CASE("a white surface never reflects more than the light it receives") {
+        // Paired: it reflects all of a light straight above, pi L = Li
+        check(Vec3(1.0f), Vec3(0.0f), kUp, {light(kUp, Vec3(1.0f))}, Vec3(0.31830989f));
         // rho = 1, Le = 0: pi L <= sum of Li (cosines are at most 1), per channel
         for (int seed = 0; seed < 100; ++seed) {
             Rng rng(500 + seed);

@@ -340,7 +340,8 @@ std::string sandbox_description() {
                               ", read-only /usr, private /tmp, no network)"
                         : "no namespaces (bubblewrap unavailable): private temp folder, "
                           "clean environment";
-    s += worker().seccomp() ? " + seccomp (no fork, exec, sockets)" : " (no seccomp)";
+    s += worker().seccomp() ? " + seccomp (no files, threads, fork, exec, sockets)"
+                            : " (no seccomp)";
     return s + " + rlimits (CPU, 2 GiB memory, 1 MiB files)";
 }
 
