@@ -7,7 +7,6 @@
 #include "raylab/scenes.h"
 #include "report.h"
 #include "sections.h"
-#include "what_if.h"
 
 namespace raylab::bench {
 
@@ -85,14 +84,13 @@ double mrays(size_t rays, double seconds) {
 struct Tables {
     Table build{{"scene", "triangles", "raylab commit ms", "raylab BVH nodes",
                  "Embree build ms", "Embree robust build ms"}};
-    Table speed{{"scene", "rays", "query", "count", "raylab Mrays/s", "Embree Mrays/s",
-                 "raylab/Embree", "Embree robust Mrays/s", "raylab/robust", "nodes/ray",
-                 "tests/ray"},
+    Table speed{{"scene", "rays", "query", "count", "raylab Mrays/s",
+                 "module path Mrays/s", "Embree Mrays/s", "raylab/Embree",
+                 "Embree robust Mrays/s", "raylab/robust", "nodes/ray", "tests/ray"},
                 3};
     Table agree{{"scene", "rays", "peer", "hit/miss agree", "raylab hits only",
                  "peer hits only", "both hit, |dt|/t > 1e-4", "max |dt|/t"},
                 3};
-    Table what_if = what_if_table();
 };
 
 std::vector<QuerySet> query_sets(const Scene& scene, const ModuleTable& modules,
@@ -131,13 +129,18 @@ void bench_scene(const std::string& name, Scene& scene, const ModuleTable& modul
     std::unique_ptr<PeerScene> peer[2];
     bench_build(name, scene, opt, peer, tables);
     const std::vector<QuerySet> sets = query_sets(scene, modules, opt, stream);
+    // The same reference modules called once per primitive test, without the engine
+    ModuleTable slow = modules;
+    slow.engine = nullptr;
     for (const QuerySet& q : sets) {
         // Work counts from one untimed pass; then raylab and the peers interleaved
         Traced mine, theirs[2];
         TraceCounters counters, scratch;
         raylab_pass(scene, modules, q, mine, counters);
+        Traced module_path;
         std::vector<std::function<void()>> works{
-            [&] { raylab_pass(scene, modules, q, mine, scratch); }};
+            [&] { raylab_pass(scene, modules, q, mine, scratch); },
+            [&] { raylab_pass(scene, slow, q, module_path, scratch); }};
         for (int robust = 0; robust < 2; ++robust) {
             if (peer[robust])
                 works.push_back(
@@ -145,15 +148,18 @@ void bench_scene(const std::string& name, Scene& scene, const ModuleTable& modul
         }
         const std::vector<double> s = interleaved_median_seconds(opt.repeats, works);
         const double n = static_cast<double>(q.rays.size());
-        std::vector<std::string> row{name, q.name, q.closest ? "closest" : "any",
+        std::vector<std::string> row{name,
+                                     q.name,
+                                     q.closest ? "closest" : "any",
                                      fmt("%zu", q.rays.size()),
-                                     fmt("%.2f", mrays(q.rays.size(), s[0]))};
+                                     fmt("%.2f", mrays(q.rays.size(), s[0])),
+                                     fmt("%.2f", mrays(q.rays.size(), s[1]))};
         for (int robust = 0; robust < 2; ++robust) {
             if (!peer[robust]) {
                 row.insert(row.end(), {"-", "-"});
                 continue;
             }
-            const double theirs_s = s[static_cast<size_t>(1 + robust)];
+            const double theirs_s = s[static_cast<size_t>(2 + robust)];
             row.push_back(fmt("%.2f", mrays(q.rays.size(), theirs_s)));
             row.push_back(fmt("%.3f", theirs_s / s[0]));
             std::vector<std::string> a{name, q.name, robust ? "Embree robust" : "Embree"};
@@ -165,11 +171,6 @@ void bench_scene(const std::string& name, Scene& scene, const ModuleTable& modul
         row.push_back(fmt("%.1f", static_cast<double>(counters.intersection_tests) / n));
         tables.speed.row(row);
     }
-    const size_t max_rays = opt.quick ? 65536 : sets[2].rays.size();
-    add_what_if_rows(tables.what_if, name, scene, modules, sets[0].rays, "camera",
-                     sets[1].rays, opt.repeats, max_rays);
-    add_what_if_rows(tables.what_if, name, scene, modules, sets[2].rays, "random", {},
-                     opt.repeats, max_rays);
 }
 
 }  // namespace
@@ -202,8 +203,6 @@ void run_scene_section(const BenchOptions& opt) {
         std::printf("### Agreement of raylab with Embree\n\n");
         tables.agree.print();
     }
-    std::printf("### Where raylab's time goes (what-if, same BVH)\n\n");
-    tables.what_if.print();
 }
 
 }  // namespace raylab::bench
