@@ -1,6 +1,7 @@
 // Section 2: raylab against Embree on the same rays (bench/sections.h).
 #include <cmath>
 #include <cstdio>
+#include <thread>
 
 #include "mesh.h"
 #include "peer.h"
@@ -88,6 +89,9 @@ struct Tables {
                  "module path Mrays/s", "Embree Mrays/s", "raylab/Embree",
                  "Embree robust Mrays/s", "raylab/robust", "nodes/ray", "tests/ray"},
                 3};
+    Table speed2{{"scene", "rays", "query", "count", "raylab Mrays/s", "Embree Mrays/s",
+                  "raylab/Embree"},
+                 3};
     Table agree{{"scene", "rays", "peer", "hit/miss agree", "raylab hits only",
                  "peer hits only", "both hit, |dt|/t > 1e-4", "max |dt|/t"},
                 3};
@@ -122,6 +126,35 @@ void bench_build(const std::string& name, Scene& scene, const BenchOptions& opt,
                       fmt("%.2f", 1e3 * commit_s), fmt("%zu", scene.bvh().node_count()),
                       peer[0] ? fmt("%.2f", 1e3 * build_s[0]) : "-",
                       peer[1] ? fmt("%.2f", 1e3 * build_s[1]) : "-"});
+}
+
+// The set traced by two threads, each taking half of the rays, raylab's and Embree's
+// passes interleaved: one row of the two-thread table
+void two_thread_row(const std::string& name, const Scene& scene,
+                    const ModuleTable& modules, const PeerScene* peer, const QuerySet& q,
+                    int repeats, Table& table) {
+    const size_t half = q.rays.size() / 2;
+    const QuerySet parts[2] = {
+        {q.name, q.closest, {q.rays.begin(), q.rays.begin() + half}},
+        {q.name, q.closest, {q.rays.begin() + half, q.rays.end()}}};
+    Traced out[2];
+    TraceCounters counters[2];
+    const auto both = [](const std::function<void(int)>& part) {
+        std::thread helper(part, 1);
+        part(0);
+        helper.join();
+    };
+    std::vector<std::function<void()>> works{[&] {
+        both([&](int k) { raylab_pass(scene, modules, parts[k], out[k], counters[k]); });
+    }};
+    if (peer)
+        works.push_back(
+            [&] { both([&](int k) { peer_pass(*peer, parts[k], out[k]); }); });
+    const std::vector<double> s = interleaved_median_seconds(repeats, works);
+    const size_t n = q.rays.size();
+    table.row({name, q.name, q.closest ? "closest" : "any", fmt("%zu", n),
+               fmt("%.2f", mrays(n, s[0])), peer ? fmt("%.2f", mrays(n, s[1])) : "-",
+               peer ? fmt("%.3f", s[1] / s[0]) : "-"});
 }
 
 void bench_scene(const std::string& name, Scene& scene, const ModuleTable& modules,
@@ -171,6 +204,9 @@ void bench_scene(const std::string& name, Scene& scene, const ModuleTable& modul
         row.push_back(fmt("%.1f", static_cast<double>(counters.intersection_tests) / n));
         tables.speed.row(row);
     }
+    for (const QuerySet& q : sets)
+        two_thread_row(name, scene, modules, peer[0].get(), q, opt.repeats,
+                       tables.speed2);
 }
 
 }  // namespace
@@ -199,6 +235,8 @@ void run_scene_section(const BenchOptions& opt) {
     tables.build.print();
     std::printf("### Speed (one thread)\n\n");
     tables.speed.print();
+    std::printf("### Speed (two threads, half of the rays each)\n\n");
+    tables.speed2.print();
     if (peer_available()) {
         std::printf("### Agreement of raylab with Embree\n\n");
         tables.agree.print();
