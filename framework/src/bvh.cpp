@@ -5,7 +5,6 @@
 #include "raylab/bvh.h"
 
 #include <algorithm>
-#include <numeric>
 #include <thread>
 
 #include "raylab/error.h"
@@ -33,19 +32,25 @@ struct BinaryNode {
     std::uint32_t count = 0;
 };
 
+// A primitive during the build: its box and index, moved together so that every pass
+// over a node's primitives reads memory in order
+struct Ref {
+    Aabb box;
+    std::uint32_t prim;
+    Vec3 centre() const { return box.centre(); }
+};
+
 struct Builder {
-    const std::vector<Aabb>& boxes;
-    const std::vector<Vec3>& centres;
-    std::vector<std::uint32_t>& prims;
+    std::vector<Ref>& refs;
     std::vector<BinaryNode> nodes;
 
-    // Builds the subtree over prims[first, first + count) into nodes[index].
+    // Builds the subtree over refs[first, first + count) into nodes[index].
     void build(std::uint32_t index, std::uint32_t first, std::uint32_t count, int depth) {
         // Bounds of the primitives and of their centres
         Aabb box, centre_box;
         for (std::uint32_t k = first; k < first + count; ++k) {
-            box.grow(boxes[prims[k]]);
-            centre_box.grow(centres[prims[k]]);
+            box.grow(refs[k].box);
+            centre_box.grow(refs[k].centre());
         }
         nodes[index].box = box;
         const auto make_leaf = [&] {
@@ -68,44 +73,55 @@ struct Builder {
         }
         // Partition by bin
         const float lo = centre_box.lo[axis];
-        const float extent = centre_box.hi[axis] - lo;
-        std::uint32_t* mid = std::partition(
-            prims.data() + first, prims.data() + first + count,
-            [&](std::uint32_t p) { return bin_of(centres[p][axis], lo, extent) <= bin; });
+        const float scale = kBins / (centre_box.hi[axis] - lo);
+        Ref* mid = std::partition(
+            refs.data() + first, refs.data() + first + count,
+            [&](const Ref& r) { return bin_of(r.centre()[axis], lo, scale) <= bin; });
         split(index, first, count,
-              static_cast<std::uint32_t>(mid - (prims.data() + first)), depth);
+              static_cast<std::uint32_t>(mid - (refs.data() + first)), depth);
     }
 
     // The SAH cost of the best split over kBins bins along every axis with a non-zero
-    // centre extent; axis stays -1 when there is none
+    // centre extent (all three binned in one pass); axis stays -1 when there is none
     float best_split(std::uint32_t first, std::uint32_t count, const Aabb& centre_box,
                      int& best_axis, int& best_bin) const {
+        Bin bins[3][kBins];
+        float lo[3], scale[3];
+        bool active[3];
+        for (int axis = 0; axis < 3; ++axis) {
+            const float extent = centre_box.hi[axis] - centre_box.lo[axis];
+            active[axis] = extent > 0.0f;
+            lo[axis] = centre_box.lo[axis];
+            scale[axis] = active[axis] ? kBins / extent : 0.0f;
+        }
+        for (std::uint32_t k = first; k < first + count; ++k) {
+            const Ref& r = refs[k];
+            const Vec3 c = r.centre();
+            for (int axis = 0; axis < 3; ++axis) {
+                Bin& b = bins[axis][bin_of(c[axis], lo[axis], scale[axis])];
+                b.box.grow(r.box);
+                ++b.count;
+            }
+        }
         float best_cost = kInfinity;
         for (int axis = 0; axis < 3; ++axis) {
-            const float lo = centre_box.lo[axis], extent = centre_box.hi[axis] - lo;
-            if (!(extent > 0.0f)) continue;
-            Bin bins[kBins];
-            for (std::uint32_t k = first; k < first + count; ++k) {
-                const int b = bin_of(centres[prims[k]][axis], lo, extent);
-                bins[b].box.grow(boxes[prims[k]]);
-                ++bins[b].count;
-            }
+            if (!active[axis]) continue;
             // Sweep from the right, then from the left, to get both sides' areas
             float right_area[kBins];
             std::uint32_t right_count[kBins];
             Aabb acc;
             std::uint32_t n = 0;
             for (int b = kBins - 1; b > 0; --b) {
-                acc.grow(bins[b].box);
-                n += bins[b].count;
+                acc.grow(bins[axis][b].box);
+                n += bins[axis][b].count;
                 right_area[b] = acc.half_area();
                 right_count[b] = n;
             }
             acc = Aabb{};
             n = 0;
             for (int b = 0; b < kBins - 1; ++b) {
-                acc.grow(bins[b].box);
-                n += bins[b].count;
+                acc.grow(bins[axis][b].box);
+                n += bins[axis][b].count;
                 if (n == 0 || right_count[b + 1] == 0) continue;
                 const float cost =
                     acc.half_area() * n + right_area[b + 1] * right_count[b + 1];
@@ -125,7 +141,7 @@ struct Builder {
                std::uint32_t left_count, int depth) {
         nodes[index].count = 0;
         const std::uint32_t right_count = count - left_count;
-        Builder right{boxes, centres, prims, {}};
+        Builder right{refs, {}};
         std::thread helper;
         if (depth == 0 && right_count >= kParallelMin &&
             std::thread::hardware_concurrency() > 1) {
@@ -155,8 +171,8 @@ struct Builder {
         build(0, first, count, 1);
     }
 
-    static int bin_of(float c, float lo, float extent) {
-        const int b = static_cast<int>(kBins * ((c - lo) / extent));
+    static int bin_of(float c, float lo, float scale) {
+        const int b = static_cast<int>((c - lo) * scale);
         return std::clamp(b, 0, kBins - 1);
     }
 };
@@ -205,19 +221,19 @@ void Bvh::build(const std::vector<Aabb>& boxes) {
     bounds_ = Aabb{};
     root_ = 0;
     prims_.resize(boxes.size());
-    std::iota(prims_.begin(), prims_.end(), 0u);
     if (boxes.empty()) return;
     if (boxes.size() > kFirstMask)
         throw Error("too many primitives for the BVH: " + std::to_string(boxes.size()) +
                     " (at most " + std::to_string(kFirstMask) + ")");
-    std::vector<Vec3> centres;
-    centres.reserve(boxes.size());
-    for (const Aabb& b : boxes)
-        centres.push_back(b.centre());
-    Builder builder{boxes, centres, prims_, {}};
+    std::vector<Ref> refs(boxes.size());
+    for (std::uint32_t k = 0; k < refs.size(); ++k)
+        refs[k] = Ref{boxes[k], k};
+    Builder builder{refs, {}};
     builder.nodes.reserve(2 * boxes.size());
     builder.nodes.emplace_back();
     builder.build(0, 0, static_cast<std::uint32_t>(boxes.size()), 0);
+    for (std::uint32_t k = 0; k < refs.size(); ++k)
+        prims_[k] = refs[k].prim;
     bounds_ = builder.nodes[0].box;
     nodes_.reserve(builder.nodes.size() / 3 + 1);
     root_ = collapse(builder.nodes, 0, nodes_);
