@@ -107,7 +107,7 @@ std::vector<QuerySet> query_sets(const Scene& scene, const ModuleTable& modules,
     return sets;
 }
 
-// Build times: raylab's commit (validation + binned SAH build, one thread), Embree's
+// Build times: raylab's commit (validation + binned SAH build + slots), Embree's
 // rtcCommitScene on a one-thread device, with and without RTC_SCENE_FLAG_ROBUST. Leaves
 // the last Embree scenes in peer (null without Embree).
 void bench_build(const std::string& name, Scene& scene, const BenchOptions& opt,
@@ -214,15 +214,19 @@ void bench_scene(const std::string& name, Scene& scene, const ModuleTable& modul
 void run_scene_section(const BenchOptions& opt) {
     print_heading(
         "2. Scenes: raylab against Embree on the same rays",
-        fmt("%s. raylab: reference modules through Scene::closest_hit / any_hit, one "
-            "thread. Embree: default build quality, scene flags none or "
+        fmt("%s. raylab: reference modules through Scene::closest_hit / any_hit, which "
+            "run the reference's engine (raylab/engine.h); module path: the same "
+            "modules called once per primitive test through the same BVH. raylab "
+            "commit: validation, BVH build (two threads above 16,384 primitives), the "
+            "engine's slots. Embree: default (MEDIUM) build quality, scene flags none or "
             "RTC_SCENE_FLAG_ROBUST, a device with threads=1. Camera rays: %dx%d pixel "
             "centres; shadow rays: the ones render() casts from those hits (recorded "
             "from the shadow module); random: as many incoherent rays from a sphere "
             "around the scene. Mrays/s: median of %d passes, raylab's and Embree's "
             "interleaved; raylab/Embree: raylab's speed divided by Embree's (1 = as "
-            "fast). nodes/ray, tests/ray: raylab's BVH nodes visited and primitive "
-            "tests.",
+            "fast). nodes/ray, tests/ray: raylab's 4-wide BVH nodes visited and "
+            "primitive tests. Two threads: each traces half of the rays, raylab (engine) "
+            "and Embree (no flags) interleaved.",
             peer_description().c_str(), opt.width, opt.height, opt.repeats));
     const ModuleTable modules = ModuleTable::make(ModuleSelection::all(Impl::reference));
     Tables tables;
