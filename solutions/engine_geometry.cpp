@@ -5,7 +5,8 @@
 // library, because it repeats the reference's numerics. Each test below computes only t,
 // with exactly the operations of its module (solutions/03_plane.cpp, 04_sphere.cpp,
 // 05_triangle.cpp; -ffp-contract=off keeps them unfused), so it accepts exactly the
-// primitives the module accepts; the module builds the Hit once, for the nearest.
+// primitives the module accepts, and builds the nearest one's Hit with the module's
+// expressions.
 // tests/framework/test_engine.cpp renders scenes both ways and compares, and
 // tests/stress runs on both paths.
 #include <algorithm>
@@ -73,9 +74,16 @@ struct WoopRay {
     }
 };
 
-// intersect_triangle's t, or NaN: the same operations in the same order
+// What intersect_triangle's Hit holds besides t and position
+struct TriangleExtra {
+    Vec3 n;
+    Vec2 uv;
+};
+
+// intersect_triangle's t, or NaN: the same operations in the same order; on a hit, its
+// normal and uv in extra
 inline float triangle_t(const Ray& r, const WoopRay& q, const Scene::Slot& tri,
-                        float tmax) {
+                        float tmax, TriangleExtra& extra) {
     if (!q.valid) return NAN;
     double x0, y0, z0, x1, y1, z1, x2, y2, z2;
     q.transform(tri.a, x0, y0, z0);
@@ -108,54 +116,75 @@ inline float triangle_t(const Ray& r, const WoopRay& q, const Scene::Slot& tri,
     if (!(t >= r.tmin && t <= tmax)) return NAN;
     // The module also refuses a triangle whose normal has no length
     const DVec3 N = glm::cross(DVec3(tri.b) - DVec3(tri.a), DVec3(tri.c) - DVec3(tri.a));
-    if (!(glm::length(N) > 0.0)) return NAN;
+    const double len = glm::length(N);
+    if (!(len > 0.0)) return NAN;
+    extra.n = Vec3(N / len);
+    extra.uv = Vec2(static_cast<float>(e1 * inv_det), static_cast<float>(e2 * inv_det));
     return t;
 }
 
 // t of the primitive in slot k, or NaN
 inline float slot_t(const Scene& scene, const Ray& r, const WoopRay& q, std::uint32_t k,
-                    float tmax) {
+                    float tmax, TriangleExtra& extra) {
     const Scene::Slot& slot = scene.slots()[k];
     if (scene.bvh().prims()[k] < scene.spheres.size())
         return sphere_t(r, slot.a, slot.b.x, tmax);
-    return triangle_t(r, q, slot, tmax);
+    return triangle_t(r, q, slot, tmax, extra);
 }
 
-PrimRef closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters) {
+// The nearest primitive and its Hit as its module returns it: t, position, normal, uv
+// (material and shading normal are the scene's to fill)
+PrimRef closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, Hit& hit) {
     PrimRef best;
-    float tmax = r.tmax;
+    float best_t = r.tmax;
     for (size_t k = 0; k < scene.planes.size(); ++k) {
         ++counters.intersection_tests;
-        const float t = plane_t(r, scene.planes[k].plane, tmax);
+        const float t = plane_t(r, scene.planes[k].plane, best_t);
         if (!std::isnan(t)) {
-            tmax = t;
+            best_t = t;
             best = {PrimRef::Kind::plane, static_cast<std::uint32_t>(k)};
         }
     }
     const WoopRay q(r);
     Ray ray = r;
-    ray.tmax = tmax;
+    ray.tmax = best_t;
     std::uint32_t best_slot = 0;
     bool in_bvh = false;
+    TriangleExtra extra, best_extra;
     scene.bvh().traverse(
         ray,
-        [&](std::uint32_t first, std::uint32_t count, float& t_max) {
+        [&](std::uint32_t first, std::uint32_t count, float& tmax) {
             counters.intersection_tests += count;
             for (std::uint32_t k = first; k < first + count; ++k) {
-                const float t = slot_t(scene, r, q, k, t_max);
+                const float t = slot_t(scene, r, q, k, tmax, extra);
                 if (!std::isnan(t)) {
-                    t_max = t;
+                    tmax = best_t = t;
                     best_slot = k;
+                    best_extra = extra;
                     in_bvh = true;
                 }
             }
             return false;
         },
         counters.bvh_nodes);
-    if (!in_bvh) return best;
+    if (best.kind == PrimRef::Kind::none && !in_bvh) return best;
+    // The module's Hit, from the values of the accepted test (same expressions)
+    hit = Hit{};
+    hit.t = best_t;
+    hit.position = r.o + best_t * r.w;
+    if (!in_bvh) {
+        hit.n = scene.planes[best.index].plane.n;
+        return best;
+    }
     const std::uint32_t p = scene.bvh().prims()[best_slot];
     const std::uint32_t sphere_count = static_cast<std::uint32_t>(scene.spheres.size());
-    if (p < sphere_count) return {PrimRef::Kind::sphere, p};
+    if (p < sphere_count) {
+        const Sphere& sphere = scene.spheres[p].sphere;
+        hit.n = (hit.position - sphere.c) / sphere.r;
+        return {PrimRef::Kind::sphere, p};
+    }
+    hit.n = best_extra.n;
+    hit.uv = best_extra.uv;
     return {PrimRef::Kind::triangle, p - sphere_count};
 }
 
@@ -171,7 +200,8 @@ bool any_hit(const Scene& scene, const Ray& r, TraceCounters& counters) {
         [&](std::uint32_t first, std::uint32_t count, float&) {
             for (std::uint32_t k = first; k < first + count && !hit; ++k) {
                 ++counters.intersection_tests;
-                const float t = slot_t(scene, r, q, k, r.tmax);
+                TriangleExtra extra;
+                const float t = slot_t(scene, r, q, k, r.tmax, extra);
                 hit = !std::isnan(t);
             }
             return hit;

@@ -179,28 +179,13 @@ void Scene::complete(Hit& hit, const Ray& r, const PrimRef& prim) const {
     }
 }
 
-// The engine found the nearest primitive; its module builds the Hit, from the same ray
-// (the test does not depend on tmax other than for acceptance)
+// The engine finds the nearest primitive and its module's Hit
 std::optional<Hit> Scene::engine_closest_hit(const GeometryEngine& engine, const Ray& r,
                                              TraceCounters& counters) const {
-    const PrimRef prim = engine.closest_hit(*this, r, counters);
-    std::optional<Hit> hit;
-    switch (prim.kind) {
-        case PrimRef::Kind::none:
-            return hit;
-        case PrimRef::Kind::plane:
-            hit = engine.intersect_plane(r, planes[prim.index].plane);
-            break;
-        case PrimRef::Kind::sphere:
-            hit = engine.intersect_sphere(r, spheres[prim.index].sphere);
-            break;
-        case PrimRef::Kind::triangle: {
-            const SceneTriangle& t = triangles[prim.index];
-            hit = engine.intersect_triangle(r, t.v0, t.v1, t.v2);
-            break;
-        }
-    }
-    if (hit) complete(*hit, r, prim);
+    Hit hit;
+    const PrimRef prim = engine.closest_hit(*this, r, counters, hit);
+    if (prim.kind == PrimRef::Kind::none) return std::nullopt;
+    complete(hit, r, prim);
     return hit;
 }
 

@@ -4,11 +4,11 @@
 // Scene::closest_hit and Scene::any_hit normally call the module table once per
 // primitive. When the table selects the reference for planes, spheres and triangles,
 // they hand the whole query to the engine instead: the same BVH traversal with the
-// reference's tests inlined, computing only t, and the full Hit built once, by the
-// module, for the nearest primitive. The engine lives in the reference library
-// (solutions/engine_geometry.cpp), which ships compiled only, so its copy of the
-// reference's numerics is not readable source in a student release; ModuleTable::make
-// (the glue, linked with the reference) puts it in the table.
+// reference's tests inlined, computing only t (and, for an accepted triangle, its
+// normal and uv), and the Hit built once, for the nearest primitive. The engine lives in
+// the reference library (solutions/engine_geometry.cpp), which ships compiled only, so
+// its copy of the reference's numerics is not readable source in a student release;
+// ModuleTable::make (the glue, linked with the reference) puts it in the table.
 #pragma once
 
 #include <cstdint>
@@ -33,8 +33,10 @@ struct GeometryEngine {
     decltype(&student::intersect_plane) intersect_plane;
     decltype(&student::intersect_sphere) intersect_sphere;
     decltype(&student::intersect_triangle) intersect_triangle;
-    /// The primitive whose hit the module path would return, counting the same tests.
-    PrimRef (*closest_hit)(const Scene& scene, const Ray& r, TraceCounters& counters);
+    /// The primitive whose hit the module path would return, counting the same tests;
+    /// when there is one, hit holds what its module returns (t, position, n, uv).
+    PrimRef (*closest_hit)(const Scene& scene, const Ray& r, TraceCounters& counters,
+                           Hit& hit);
     /// What the module path's any-hit returns.
     bool (*any_hit)(const Scene& scene, const Ray& r, TraceCounters& counters);
 };
