@@ -12,17 +12,21 @@ namespace raylab::student {
 ///
 /// Self-intersection (handout 08 §3): x carries rounding error and may lie just below its
 /// own surface, so the ray starts a little off the surface, on the light's side, and
-/// stops a little short of the light. The offset eps should grow with the size of x's
-/// coordinates (1e-4 plus a few ulps of the largest works well).
+/// stops a little short of the light. The framework has already recomputed x in double
+/// on the surface it hit, so its error is about one ulp of its largest coordinate: the
+/// offset eps should be a few of those ulps (it must grow with |x|; a fixed 1e-4 added to
+/// it also passes, but hides occluders closer than that).
 bool in_shadow(const Occluder& scene, const Vec3& x, const Vec3& n,
                const LightSample& sample) {
     // TODO(student) 08_shadows: Offset along the normal, towards the light's side of the
-    //   surface: scale = largest |coordinate| of x, eps, side = n or -n (the one with
-    //   side . wi >= 0), o = x + eps side
+    //   surface: scale = largest |coordinate| of x, eps = a few ulps of it (4 or more
+    //   times epsilon() * scale: x may lie up to about 3 ulps below), side = n or -n (the
+    //   one with side . wi >= 0), o = x + eps side
     // TODO(student) 08_shadows: Segment to the light, stopping short of it:
-    //   shadow_ray{o, wi, eps, (distance from o to the light) - eps} (tmin = eps, not 0:
-    //   at an inside corner o lies in the neighbouring face's plane, which blocks at t =
-    //   0) return scene.occluded(shadow_ray)
+    //   shadow_ray{o, wi, eps, (distance from o to the light) - margin} (tmin = eps, not
+    //   0: at an inside corner o lies in the neighbouring face's plane, which blocks at
+    //   t = 0; the margin grows with |x| + r, the light's rounding error) return
+    //   scene.occluded(shadow_ray)
     RAYLAB_STUB("08_shadows");
     (void)scene, (void)x, (void)n, (void)sample;
     return false;

@@ -8,7 +8,8 @@
 #                         [--private DIR]
 #   (also: ./scripts/dev.sh grade, make grade, make grade-reference)
 #   --reference        grade the reference solutions (solutions/) instead of exercises
-#   --timeout SECONDS  time limit per module (default 10)
+#   --timeout SECONDS  limit per call to student code and for its start-up (default 10);
+#                      a whole module stops after max(6 x SECONDS, 60 s) of wall time
 #   --points N         points per module (default 10)
 #   --expect MODE      exit 1 unless the scores are as expected: full, not-started (for CI
 #                      and scripts/make-student-release.sh; see raylab-grade --help)
@@ -296,5 +297,5 @@ args=(--tests "$BUILD/tests/grading/raylab-grading-tests" --out "$OUT" --timeout
 for id in "${!error[@]}"; do args+=(--module-error "$id=${error[$id]}"); done
 for id in "${!used[@]}"; do args+=(--source "$id=${used[$id]}"); done
 
-step "Grading, one process per module (time limit ${timeout} s each)"
+step "Grading, one process per module (${timeout} s per call to student code)"
 "$BUILD/tests/grading/raylab-grade" "${args[@]}"

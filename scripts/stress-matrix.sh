@@ -3,13 +3,19 @@
 # levels, each in its own build folder, and fails if any configuration fails (issue 8, B7:
 # the same pass/fail with GCC and clang, -O0/-O2/-O3 and -march=native).
 #
-#   scripts/stress-matrix.sh [--quick]     (--quick: g++ -O2 and clang++ -O3 -march=native)
+#   scripts/stress-matrix.sh [--ci | --quick]
 #
 # Default matrix (6 configurations; only raylab-stress-tests and what it links are built):
 #   g++     -O0, -O2, -O3 -march=native
 #   clang++ -O0, -O2, -O3 -march=native
-# Build folders: build-stress/<compiler>-<flags>. Uses ccache when /work/helper-env.sh or
-# the environment sets it up; RAYLAB_STRESS_JOBS sets the build parallelism (default 2).
+# --ci: what `scripts/dev.sh test` runs, both compilers with -march=native: g++ -O2
+#   -march=native and clang++ -O3 -march=native (build-ci/ already runs the suite with g++
+#   -O3 and build-asan/ with g++ -O0; each configuration here is a build of the library,
+#   about 4 minutes on 2 busy cores without ccache, seconds with it)
+# --quick: g++ -O2 and clang++ -O3 -march=native.
+# Build folders: build-stress/<compiler>-<flags>. Uses ccache when it is installed;
+# RAYLAB_STRESS_JOBS sets the build parallelism (default 2). Prints each configuration's
+# time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -21,9 +27,15 @@ configs=(
     "clang++|-O2"
     "clang++|-O3 -march=native"
 )
-if [[ "${1:-}" == "--quick" ]]; then
-    configs=("g++|-O2" "clang++|-O3 -march=native")
-fi
+case "${1:-}" in
+    "") ;;
+    --ci) configs=("g++|-O2 -march=native" "clang++|-O3 -march=native") ;;
+    --quick) configs=("g++|-O2" "clang++|-O3 -march=native") ;;
+    *)
+        echo "usage: scripts/stress-matrix.sh [--ci | --quick]" >&2
+        exit 2
+        ;;
+esac
 jobs="${RAYLAB_STRESS_JOBS:-2}"
 launcher=()
 if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
@@ -39,6 +51,7 @@ for config in "${configs[@]}"; do
         continue
     fi
     dir="build-stress/${cxx}${flags// /}"
+    start=$SECONDS
     echo "== stress suite: $cxx $flags ($dir)"
     if ! cmake -S . -B "$dir" -G Ninja -DCMAKE_CXX_COMPILER="$cxx" \
         -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="$flags" "${launcher[@]}" \
@@ -49,9 +62,11 @@ for config in "${configs[@]}"; do
         failed+=("$cxx $flags (build)")
         continue
     fi
+    built=$SECONDS
     if ! "$dir/tests/stress/raylab-stress-tests" --no-intro; then
         failed+=("$cxx $flags")
     fi
+    echo "== $cxx $flags: build $((built - start)) s, tests $((SECONDS - built)) s"
 done
 if ((${#failed[@]})); then
     printf 'stress-matrix: FAILED: %s\n' "${failed[@]}" >&2

@@ -10,14 +10,31 @@ namespace raylab::reference {
 /// Intersection", Ray Tracing Gems ch. 7): the discriminant is computed as r^2 - |f - b
 /// w|^2 instead of b^2 - c, which cancels badly for small spheres far away, and the root
 /// nearer to zero as c / q, which avoids subtracting two nearly equal numbers.
+///
+/// A ray that starts on or a few ulps off the sphere (a shadow ray leaving it, handout 08
+/// §3) must see c = |f|^2 - r^2 > 0 and, leaving tangentially, disc < 0: in float their
+/// rounding (ulps of |f|^2 and r^2) exceeds those few ulps where the sphere passes near
+/// the origin (issue 8, B5). Such rays (|c| within 2^-16 of |f|^2 + r^2) take the same
+/// steps with f = o - c exact and the coefficients in double; all others stay in float.
 std::optional<Hit> intersect_sphere(const Ray& r, const Sphere& sphere) {
     // Half-coefficients of t^2 + 2 b t + c = 0, with f = o - c
     const Vec3 f = r.o - sphere.c;
-    const float b = glm::dot(f, r.w);
-    const float c = glm::dot(f, f) - sphere.r * sphere.r;
-    // Discriminant b^2 - c = r^2 - |f - b w|^2 (the squared half chord)
-    const Vec3 l = f - b * r.w;
-    const float disc = sphere.r * sphere.r - glm::dot(l, l);
+    const float rr = sphere.r * sphere.r, ff = glm::dot(f, f);
+    float c = ff - rr;
+    float b, disc;
+    if (std::abs(c) > 0x1p-16f * (ff + rr)) {
+        b = glm::dot(f, r.w);
+        // Discriminant b^2 - c = r^2 - |f - b w|^2 (the squared half chord)
+        const Vec3 l = f - b * r.w;
+        disc = rr - glm::dot(l, l);
+    } else {
+        const DVec3 fd = DVec3(r.o) - DVec3(sphere.c), w(r.w);
+        const double rrd = double(sphere.r) * double(sphere.r), bd = glm::dot(fd, w);
+        const DVec3 l = fd - bd * w;
+        c = static_cast<float>(glm::dot(fd, fd) - rrd);
+        b = static_cast<float>(bd);
+        disc = static_cast<float>(rrd - glm::dot(l, l));
+    }
     if (disc < 0.0f) return std::nullopt;
     // Both roots without cancellation: q = -b - sign(b) sqrt(disc), t = q and t = c / q
     const float q = -b - std::copysign(std::sqrt(disc), b);

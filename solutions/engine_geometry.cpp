@@ -30,13 +30,25 @@ inline float plane_t(const Ray& r, const Plane& plane, float tmax) {
     return t;
 }
 
-// intersect_sphere's t (Ray Tracing Gems ch. 7), or NaN
+// intersect_sphere's t (Ray Tracing Gems ch. 7; rays starting on the sphere in double,
+// issue 8 B5), or NaN
 inline float sphere_t(const Ray& r, const Vec3& centre, float radius, float tmax) {
     const Vec3 f = r.o - centre;
-    const float b = glm::dot(f, r.w);
-    const float c = glm::dot(f, f) - radius * radius;
-    const Vec3 l = f - b * r.w;
-    const float disc = radius * radius - glm::dot(l, l);
+    const float rr = radius * radius, ff = glm::dot(f, f);
+    float c = ff - rr;
+    float b, disc;
+    if (std::abs(c) > 0x1p-16f * (ff + rr)) {
+        b = glm::dot(f, r.w);
+        const Vec3 l = f - b * r.w;
+        disc = rr - glm::dot(l, l);
+    } else {
+        const DVec3 fd = DVec3(r.o) - DVec3(centre), w(r.w);
+        const double rrd = double(radius) * double(radius), bd = glm::dot(fd, w);
+        const DVec3 l = fd - bd * w;
+        c = static_cast<float>(glm::dot(fd, fd) - rrd);
+        b = static_cast<float>(bd);
+        disc = static_cast<float>(rrd - glm::dot(l, l));
+    }
     if (disc < 0.0f) return NAN;
     const float q = -b - std::copysign(std::sqrt(disc), b);
     float t0 = q;

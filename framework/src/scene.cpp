@@ -5,6 +5,7 @@
 
 #include "raylab/engine.h"
 #include "raylab/error.h"
+#include "raylab/refine.h"
 
 namespace raylab {
 
@@ -38,6 +39,30 @@ Aabb triangle_box(const SceneTriangle& t) {
 void finish(Hit& hit, const Ray& r, int material, const Vec3& shading_normal) {
     hit.material = material;
     hit.ns = glm::dot(shading_normal, r.w) > 0.0f ? -shading_normal : shading_normal;
+}
+
+// The hit recomputed in double on the primitive it lies on (raylab/refine.h, issue 8
+// B4): its point, and a sphere's normal, which the module derived from its float point.
+// source is -1 - index for a plane, the BVH primitive index for a sphere or triangle;
+// ns is the shading normal, a sphere's geometric one
+void refine_hit(const Scene& s, std::int64_t source, Hit& hit, const Ray& r, Vec3& ns) {
+    const Vec3 x = hit.position;
+    const std::int64_t sphere_count = static_cast<std::int64_t>(s.spheres.size());
+    Vec3 on = x;
+    if (source < 0) {
+        on = refine_on_plane(x, r, s.planes[static_cast<size_t>(-1 - source)].plane);
+    } else if (source < sphere_count) {
+        const Sphere& sphere = s.spheres[static_cast<size_t>(source)].sphere;
+        on = refine_on_sphere(x, r, hit.t, sphere);
+        hit.position = accept_refined(x, on, r, hit.t);
+        if (hit.position != x)
+            ns = hit.n = refine_sphere_normal(hit.position, hit.n, sphere);
+        return;
+    } else {
+        const SceneTriangle& t = s.triangles[static_cast<size_t>(source - sphere_count)];
+        on = refine_on_triangle(x, r, t.v0, t.v1, t.v2);
+    }
+    hit.position = accept_refined(x, on, r, hit.t);
 }
 
 Vec3 interpolated_normal(const SceneTriangle& tri, const Hit& hit) {
@@ -165,18 +190,31 @@ const GeometryEngine* engine_for(const ModuleTable& m) {
 
 }  // namespace
 
-// Material and shading normal of the nearest hit, from the primitive it belongs to
+// Material and shading normal of the nearest hit, from the primitive it belongs to, and
+// its point refined on that primitive (refine_hit)
 void Scene::complete(Hit& hit, const Ray& r, const PrimRef& prim) const {
+    const std::int64_t sphere_count = static_cast<std::int64_t>(spheres.size());
+    int material = 0;
+    Vec3 ns = hit.n;
+    std::int64_t source = 0;
     switch (prim.kind) {
         case PrimRef::Kind::plane:
-            return finish(hit, r, planes[prim.index].material, hit.n);
+            material = planes[prim.index].material;
+            source = -1 - static_cast<std::int64_t>(prim.index);
+            break;
         case PrimRef::Kind::sphere:
-            return finish(hit, r, spheres[prim.index].material, hit.n);
+            material = spheres[prim.index].material;
+            source = prim.index;
+            break;
         default: {
             const SceneTriangle& t = triangles[prim.index];
-            return finish(hit, r, t.material, interpolated_normal(t, hit));
+            material = t.material;
+            ns = interpolated_normal(t, hit);
+            source = sphere_count + prim.index;
         }
     }
+    refine_hit(*this, source, hit, r, ns);
+    finish(hit, r, material, ns);
 }
 
 // The engine finds the nearest primitive and its module's Hit

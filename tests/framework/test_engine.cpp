@@ -105,6 +105,14 @@ TEST_SUITE("engine") {
                 check_same_hit(a, scene.closest_hit(slow, r, cs));
                 CHECK(scene.any_hit(fast, r, cf) == scene.any_hit(slow, r, cs));
                 hits += a.has_value();
+                if (!a) continue;
+                // A ray leaving the surface from the hit point, as shadow rays do: the
+                // tests' paths for origins on a primitive (issue 8, B5)
+                const Ray leave{a->position, rng.direction(), 0.0f, kInfinity};
+                INFO("leaving: " << leave);
+                check_same_hit(scene.closest_hit(fast, leave, cf),
+                               scene.closest_hit(slow, leave, cs));
+                CHECK(scene.any_hit(fast, leave, cf) == scene.any_hit(slow, leave, cs));
             }
             CHECK(hits > 500);  // the rays meet the scene: the comparison means something
             CHECK(cf.intersection_tests == cs.intersection_tests);

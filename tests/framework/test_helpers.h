@@ -56,7 +56,11 @@ class Rng {
         return lo + (hi - lo) * (next() >> 8) * 0x1p-24f;
     }
     Vec3 in_box(float lo, float hi) {
-        return Vec3(uniform(lo, hi), uniform(lo, hi), uniform(lo, hi));
+        // One statement each: the order of a call's arguments is unspecified (g++ and
+        // clang differ), and every compiler must draw the same cases
+        const float x = uniform(lo, hi);
+        const float y = uniform(lo, hi);
+        return Vec3(x, y, uniform(lo, hi));
     }
     Vec3 direction() {
         for (;;) {

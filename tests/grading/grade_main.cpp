@@ -25,7 +25,8 @@ constexpr const char* kUsage = R"(Usage: raylab-grade --tests FILE --out DIR [op
   --tests FILE          the raylab-grading-tests binary
   --out DIR             where summary.txt, junit.xml, results.json, logs/ and images/ go
   --reference           grade the reference solutions instead of the student's code
-  --timeout SECONDS     time limit per module (default 10)
+  --timeout SECONDS     limit per call to student code and for its start-up (default
+                        10); a module stops after max(6 x SECONDS, 60 s) of wall time
   --points N            points per module (default 10)
   --module-error ID=FILE  module ID failed to build: score 0, FILE holds the message
   --source ID=FILE      the hand-in's file graded for module ID (for the reports)

@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -112,6 +113,15 @@ std::string signal_name(int sig) {
 
 // ---- Grading --------------------------------------------------------------------------
 
+// The wall-clock backstop for a whole module. Hangs are caught per call (--timeout, by
+// the trusted side) and CPU burn by the worker's RLIMIT_CPU; the module's wall time also
+// counts every socket round trip of the whole-render checks, which a loaded machine
+// (a class graded with -j N) stretches many times over: a correct module took 6-9 s of
+// wall time with 4 gradings on 2 cores, and failed a 10 s module limit.
+static double module_wall_limit(const Options& o) {
+    return std::max(6.0 * o.timeout, 60.0);
+}
+
 std::vector<std::pair<std::string, std::string>> child_env(const Options& o,
                                                            const std::string& log,
                                                            const std::string& id = "") {
@@ -119,8 +129,9 @@ std::vector<std::pair<std::string, std::string>> child_env(const Options& o,
         {"RAYLAB_GRADE_LOG", log},
         {"RAYLAB_GRADE_IMPL", o.reference ? "reference" : "student"},
         {"RAYLAB_GRADE_IMAGES", o.out + "/images"},
-        // The trusted side reports a hang itself before the driver's limit strikes
-        {"RAYLAB_WORKER_TIMEOUT", std::to_string(o.timeout * 0.8)}};
+        // The per-call limit: the trusted side reports a hang in student code itself,
+        // long before the module's wall-clock backstop (module_wall_limit) strikes
+        {"RAYLAB_WORKER_TIMEOUT", std::to_string(o.timeout)}};
     if (!id.empty())
         env.push_back({"RAYLAB_WORKER_LOG", o.out + "/logs/" + id + ".worker.log"});
     if (!o.workers.empty() && !id.empty())
@@ -185,7 +196,7 @@ ModuleResult grade_module(const Options& o, const ModuleInfo& info,
         run({o.tests, "--test-suite=" + id, "--no-colors",
              o.private_dir.empty() ? "--test-case-exclude=" + std::string(kPrivate) + "*"
                                    : "--test-case-exclude="},
-            child_env(o, log, id), o.out + "/logs/" + id + ".log", o.timeout);
+            child_env(o, log, id), o.out + "/logs/" + id + ".log", module_wall_limit(o));
     m.seconds = r.seconds;
     std::string crashed_in, hung_in, lost_why;
     std::istringstream in(read_file(log));
@@ -227,7 +238,7 @@ ModuleResult grade_module(const Options& o, const ModuleInfo& info,
     if (r.timed_out || !hung_in.empty()) {
         m.status = "time limit";
         std::ostringstream s;
-        s << "no result after " << o.timeout << " s (an endless loop?)"
+        s << "no result after " << module_wall_limit(o) << " s (an endless loop?)"
           << (first_running.empty() ? "" : " in \"" + first_running + "\"");
         m.first_failure = hung_in.empty() ? s.str() : "\"" + hung_in + "\": " + lost_why;
         for (CaseResult& c : m.cases)

@@ -1,0 +1,101 @@
+// Hit points moved back onto their primitive, in double (raylab/refine.h).
+#include "raylab/refine.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace raylab {
+
+namespace {
+
+float max_abs(const Vec3& v) {
+    return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+}
+
+// Rounds a double point to float; each coordinate moves by at most half an ulp
+Vec3 to_float(const DVec3& p) {
+    return Vec3(static_cast<float>(p.x), static_cast<float>(p.y),
+                static_cast<float>(p.z));
+}
+
+// The point of the plane p . n = k nearest to p (n need not be unit)
+DVec3 onto_plane(const DVec3& p, const DVec3& n, double k) {
+    return p - (glm::dot(p, n) - k) / glm::dot(n, n) * n;
+}
+
+// Where r meets the plane p . n = k, projected onto it again (the step along w rounds
+// at about 2^-53 |o + t w|); x projected when r is parallel to the plane. Float inputs
+// are exact in double, so the only errors are double roundings, about 2^-50 of the
+// coordinates, far below the final rounding to float
+Vec3 ray_onto_plane(const Vec3& x, const Ray& r, const DVec3& n, double k) {
+    const DVec3 o(r.o), w(r.w);
+    const double wn = glm::dot(w, n);
+    if (wn != 0.0) {
+        const DVec3 p = onto_plane(o + (k - glm::dot(o, n)) / wn * w, n, k);
+        if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))
+            return to_float(p);
+    }
+    return to_float(onto_plane(DVec3(x), n, k));
+}
+
+}  // namespace
+
+float hit_error_bound(const Vec3& x) {
+    return std::numeric_limits<float>::epsilon() * max_abs(x);
+}
+
+Vec3 refine_on_plane(const Vec3& x, const Ray& r, const Plane& plane) {
+    const DVec3 n(plane.n);
+    if (!(glm::dot(n, n) > 0.0)) return x;
+    return ray_onto_plane(x, r, n, -double(plane.d));
+}
+
+Vec3 refine_on_sphere(const Vec3& x, const Ray& r, float t, const Sphere& sphere) {
+    const DVec3 c(sphere.c), o(r.o), w(r.w), f = o - c;
+    const double rr = double(sphere.r) * double(sphere.r), ww = glm::dot(w, w);
+    // ww t^2 + 2 b t + k = 0. In double the textbook discriminant is accurate enough:
+    // its cancellation costs at most the 2^-53 of b^2 that float inputs can resolve
+    const double b = glm::dot(f, w), k = glm::dot(f, f) - rr;
+    const double disc = b * b - ww * k;
+    DVec3 p(x);
+    if (ww > 0.0 && disc >= 0.0) {
+        const double s = std::sqrt(disc);
+        const double t0 = (-b - s) / ww, t1 = (-b + s) / ww;
+        const double td = std::abs(t0 - double(t)) <= std::abs(t1 - double(t)) ? t0 : t1;
+        p = o + td * w;
+    }
+    const DVec3 fp = p - c;
+    const double len = glm::length(fp);
+    if (!(len > 0.0) || !std::isfinite(len)) return x;
+    return to_float(c + (double(sphere.r) / len) * fp);
+}
+
+Vec3 refine_on_triangle(const Vec3& x, const Ray& r, const Vec3& v0, const Vec3& v1,
+                        const Vec3& v2) {
+    // Differences of floats are exact in double unless their exponents are more than 29
+    // apart; the cross product then carries a relative error of about 2^-52
+    const DVec3 a(v0), n = glm::cross(DVec3(v1) - a, DVec3(v2) - a);
+    const double nn = glm::dot(n, n);
+    if (!(nn > 0.0) || !std::isfinite(nn)) return x;
+    return ray_onto_plane(x, r, n, glm::dot(a, n));
+}
+
+Vec3 refine_sphere_normal(const Vec3& x, const Vec3& n, const Sphere& sphere) {
+    const DVec3 f = DVec3(x) - DVec3(sphere.c);
+    const double len = glm::length(f), n_len = glm::length(DVec3(n));
+    if (!(len > 0.0) || !std::isfinite(len) || !(std::abs(n_len - 1.0) < 0x1p-4))
+        return n;
+    const DVec3 exact = f / len;
+    const double cos = glm::dot(exact, DVec3(n)) / n_len;
+    if (cos >= 0.5) return Vec3(exact);
+    if (cos <= -0.5) return Vec3(-exact);
+    return n;
+}
+
+Vec3 accept_refined(const Vec3& x, const Vec3& refined, const Ray& r, float t) {
+    if (!is_finite(refined)) return x;
+    const float scale = max_abs(r.o) + std::abs(t) + max_abs(x);
+    return max_abs(refined - x) <= 0x1p-8f * scale ? refined : x;
+}
+
+}  // namespace raylab
