@@ -138,14 +138,18 @@ void two_thread_row(const std::string& name, const Scene& scene,
         {q.name, q.closest, {q.rays.begin(), q.rays.begin() + half}},
         {q.name, q.closest, {q.rays.begin() + half, q.rays.end()}}};
     Traced out[2];
-    TraceCounters counters[2];
+    // One cache line per thread's counters: written per ray, they must not share one
+    struct alignas(64) Counters {
+        TraceCounters c;
+    } counters[2];
     const auto both = [](const std::function<void(int)>& part) {
         std::thread helper(part, 1);
         part(0);
         helper.join();
     };
     std::vector<std::function<void()>> works{[&] {
-        both([&](int k) { raylab_pass(scene, modules, parts[k], out[k], counters[k]); });
+        both(
+            [&](int k) { raylab_pass(scene, modules, parts[k], out[k], counters[k].c); });
     }};
     if (peer)
         works.push_back(
