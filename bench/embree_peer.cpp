@@ -5,6 +5,8 @@
 
 #include <chrono>
 #include <cstdio>
+#include <map>
+#include <mutex>
 
 #include "peer.h"
 #include "raylab/error.h"
@@ -17,15 +19,18 @@ void report_error(void*, RTCError code, const char* message) {
     std::fprintf(stderr, "Embree error %d: %s\n", static_cast<int>(code), message);
 }
 
-// One device for the process; scenes keep their own reference to it
+// One device per thread count for the process; scenes keep their own reference to it
 RTCDevice device(int threads) {
-    static RTCDevice d = [threads] {
+    static std::map<int, RTCDevice> devices;
+    static std::mutex mutex;
+    const std::lock_guard<std::mutex> lock(mutex);
+    RTCDevice& d = devices[threads];
+    if (!d) {
         const std::string config = "threads=" + std::to_string(threads);
-        RTCDevice dev = rtcNewDevice(config.c_str());
-        if (!dev) throw Error("Embree: rtcNewDevice(\"" + config + "\") failed");
-        rtcSetDeviceErrorFunction(dev, report_error, nullptr);
-        return dev;
-    }();
+        d = rtcNewDevice(config.c_str());
+        if (!d) throw Error("Embree: rtcNewDevice(\"" + config + "\") failed");
+        rtcSetDeviceErrorFunction(d, report_error, nullptr);
+    }
     return d;
 }
 

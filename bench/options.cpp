@@ -42,7 +42,7 @@ std::vector<double> parse_distances(const std::string& value) {
 }
 
 void parse_sections(const std::string& value, BenchOptions& o) {
-    o.kernels = o.scenes = o.render = false;
+    o.kernels = o.scenes = o.render = o.scaling = false;
     size_t start = 0;
     while (start <= value.size()) {
         const size_t comma = std::min(value.find(',', start), value.size());
@@ -53,10 +53,13 @@ void parse_sections(const std::string& value, BenchOptions& o) {
             o.scenes = true;
         } else if (word == "render") {
             o.render = true;
+        } else if (word == "scaling") {
+            o.scaling = true;
         } else if (word == "all") {
-            o.kernels = o.scenes = o.render = true;
+            o.kernels = o.scenes = o.render = o.scaling = true;
         } else {
-            throw Error("unknown section '" + word + "' (kernels, scenes, render, all)");
+            throw Error("unknown section '" + word +
+                        "' (kernels, scenes, render, scaling, all)");
         }
         start = comma + 1;
     }
@@ -68,7 +71,7 @@ std::string bench_help() {
     return "raylab-bench: run time against error of raylab's intersection kernels,\n"
            "raylab against Intel Embree on the same rays, and the renderer's cost.\n\n"
            "Usage: raylab-bench [options]\n\n"
-           "  --sections LIST   kernels,scenes,render or all (default all)\n"
+           "  --sections LIST   kernels,scenes,render,scaling or all (default all)\n"
            "  --quick           a run of about 30 s: fewer rays, repeats and triangles\n"
            "  --repeats N       timed repeats per measurement, median reported (5; quick "
            "3)\n"
@@ -76,6 +79,8 @@ std::string bench_help() {
            "  --distances LIST  target distances from the origin, each >= 1\n"
            "                    (1,1e2,1e4,1e5,1e6)\n"
            "  --mesh-tris N     triangles of the procedural mesh (400000; quick 100000)\n"
+           "  --max-tris N      largest mesh of the scaling section (2000000; quick\n"
+           "                    100000)\n"
            "  --size WxH        camera rays and renders (640x480)\n"
            "  --threads N       what 'all threads' means in the render section\n"
            "                    (default: hardware threads)\n"
@@ -94,6 +99,7 @@ BenchOptions parse_bench_options(int argc, char** argv) {
             o.repeats = 3;
             o.kernel_rays = 1 << 14;
             o.mesh_triangles = 100000;
+            o.max_triangles = 100000;
         }
     }
     for (int k = 1; k < argc; ++k) {
@@ -116,6 +122,9 @@ BenchOptions parse_bench_options(int argc, char** argv) {
         } else if (arg == "--mesh-tris") {
             o.mesh_triangles =
                 static_cast<int>(parse_integer(arg, value(), 100, 20000000));
+        } else if (arg == "--max-tris") {
+            o.max_triangles =
+                static_cast<int>(parse_integer(arg, value(), 1000, 20000000));
         } else if (arg == "--size") {
             const std::string v = value();
             const size_t x = v.find('x');

@@ -14,11 +14,13 @@ struct BenchOptions {
     bool kernels = true;        ///< section 1: kernels, run time against error
     bool scenes = true;         ///< section 2: raylab against Embree on the same rays
     bool render = true;         ///< section 3: render() and the work it skips
-    bool quick = false;         ///< also thins the what-if ray sets to 65536 rays
+    bool scaling = true;        ///< section 4: build, memory and time against size
+    bool quick = false;         ///< fewer rays, repeats and triangles
     int repeats = 5;            ///< timed repeats per measurement (median reported)
     int kernel_rays = 1 << 17;  ///< rays per kernel ray set
     std::vector<double> distances{1.0, 1e2, 1e4, 1e5, 1e6};  ///< target distances
     int mesh_triangles = 400000;  ///< size of the procedural displaced sphere
+    int max_triangles = 2000000;  ///< largest mesh of the scaling section
     int width = 640;              ///< image size of camera rays and renders
     int height = 480;
     int threads = 0;  ///< "all" threads of the render section; 0: hardware threads

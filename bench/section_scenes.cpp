@@ -1,13 +1,13 @@
 // Section 2: raylab against Embree on the same rays (bench/sections.h).
 #include <cmath>
 #include <cstdio>
+#include <thread>
 
 #include "mesh.h"
 #include "peer.h"
 #include "raylab/scenes.h"
 #include "report.h"
 #include "sections.h"
-#include "what_if.h"
 
 namespace raylab::bench {
 
@@ -85,14 +85,16 @@ double mrays(size_t rays, double seconds) {
 struct Tables {
     Table build{{"scene", "triangles", "raylab commit ms", "raylab BVH nodes",
                  "Embree build ms", "Embree robust build ms"}};
-    Table speed{{"scene", "rays", "query", "count", "raylab Mrays/s", "Embree Mrays/s",
-                 "raylab/Embree", "Embree robust Mrays/s", "raylab/robust", "nodes/ray",
-                 "tests/ray"},
+    Table speed{{"scene", "rays", "query", "count", "raylab Mrays/s",
+                 "module path Mrays/s", "Embree Mrays/s", "raylab/Embree",
+                 "Embree robust Mrays/s", "raylab/robust", "nodes/ray", "tests/ray"},
                 3};
+    Table speed2{{"scene", "rays", "query", "count", "raylab Mrays/s", "Embree Mrays/s",
+                  "raylab/Embree"},
+                 3};
     Table agree{{"scene", "rays", "peer", "hit/miss agree", "raylab hits only",
                  "peer hits only", "both hit, |dt|/t > 1e-4", "max |dt|/t"},
                 3};
-    Table what_if = what_if_table();
 };
 
 std::vector<QuerySet> query_sets(const Scene& scene, const ModuleTable& modules,
@@ -105,7 +107,7 @@ std::vector<QuerySet> query_sets(const Scene& scene, const ModuleTable& modules,
     return sets;
 }
 
-// Build times: raylab's commit (validation + binned SAH build, one thread), Embree's
+// Build times: raylab's commit (validation + binned SAH build + slots), Embree's
 // rtcCommitScene on a one-thread device, with and without RTC_SCENE_FLAG_ROBUST. Leaves
 // the last Embree scenes in peer (null without Embree).
 void bench_build(const std::string& name, Scene& scene, const BenchOptions& opt,
@@ -126,18 +128,56 @@ void bench_build(const std::string& name, Scene& scene, const BenchOptions& opt,
                       peer[1] ? fmt("%.2f", 1e3 * build_s[1]) : "-"});
 }
 
+// The set traced by two threads, each taking half of the rays, raylab's and Embree's
+// passes interleaved: one row of the two-thread table
+void two_thread_row(const std::string& name, const Scene& scene,
+                    const ModuleTable& modules, const PeerScene* peer, const QuerySet& q,
+                    int repeats, Table& table) {
+    const size_t half = q.rays.size() / 2;
+    const QuerySet parts[2] = {
+        {q.name, q.closest, {q.rays.begin(), q.rays.begin() + half}},
+        {q.name, q.closest, {q.rays.begin() + half, q.rays.end()}}};
+    Traced out[2];
+    // One cache line per thread's counters: written per ray, they must not share one
+    struct alignas(64) Counters {
+        TraceCounters c;
+    } counters[2];
+    const auto both = [](const std::function<void(int)>& part) {
+        std::thread helper(part, 1);
+        part(0);
+        helper.join();
+    };
+    std::vector<std::function<void()>> works{[&] {
+        both(
+            [&](int k) { raylab_pass(scene, modules, parts[k], out[k], counters[k].c); });
+    }};
+    if (peer)
+        works.push_back(
+            [&] { both([&](int k) { peer_pass(*peer, parts[k], out[k]); }); });
+    const std::vector<double> s = interleaved_median_seconds(repeats, works);
+    const size_t n = q.rays.size();
+    table.row({name, q.name, q.closest ? "closest" : "any", fmt("%zu", n),
+               fmt("%.2f", mrays(n, s[0])), peer ? fmt("%.2f", mrays(n, s[1])) : "-",
+               peer ? fmt("%.3f", s[1] / s[0]) : "-"});
+}
+
 void bench_scene(const std::string& name, Scene& scene, const ModuleTable& modules,
                  const BenchOptions& opt, std::uint64_t stream, Tables& tables) {
     std::unique_ptr<PeerScene> peer[2];
     bench_build(name, scene, opt, peer, tables);
     const std::vector<QuerySet> sets = query_sets(scene, modules, opt, stream);
+    // The same reference modules called once per primitive test, without the engine
+    ModuleTable slow = modules;
+    slow.engine = nullptr;
     for (const QuerySet& q : sets) {
         // Work counts from one untimed pass; then raylab and the peers interleaved
         Traced mine, theirs[2];
         TraceCounters counters, scratch;
         raylab_pass(scene, modules, q, mine, counters);
+        Traced module_path;
         std::vector<std::function<void()>> works{
-            [&] { raylab_pass(scene, modules, q, mine, scratch); }};
+            [&] { raylab_pass(scene, modules, q, mine, scratch); },
+            [&] { raylab_pass(scene, slow, q, module_path, scratch); }};
         for (int robust = 0; robust < 2; ++robust) {
             if (peer[robust])
                 works.push_back(
@@ -145,15 +185,18 @@ void bench_scene(const std::string& name, Scene& scene, const ModuleTable& modul
         }
         const std::vector<double> s = interleaved_median_seconds(opt.repeats, works);
         const double n = static_cast<double>(q.rays.size());
-        std::vector<std::string> row{name, q.name, q.closest ? "closest" : "any",
+        std::vector<std::string> row{name,
+                                     q.name,
+                                     q.closest ? "closest" : "any",
                                      fmt("%zu", q.rays.size()),
-                                     fmt("%.2f", mrays(q.rays.size(), s[0]))};
+                                     fmt("%.2f", mrays(q.rays.size(), s[0])),
+                                     fmt("%.2f", mrays(q.rays.size(), s[1]))};
         for (int robust = 0; robust < 2; ++robust) {
             if (!peer[robust]) {
                 row.insert(row.end(), {"-", "-"});
                 continue;
             }
-            const double theirs_s = s[static_cast<size_t>(1 + robust)];
+            const double theirs_s = s[static_cast<size_t>(2 + robust)];
             row.push_back(fmt("%.2f", mrays(q.rays.size(), theirs_s)));
             row.push_back(fmt("%.3f", theirs_s / s[0]));
             std::vector<std::string> a{name, q.name, robust ? "Embree robust" : "Embree"};
@@ -165,11 +208,9 @@ void bench_scene(const std::string& name, Scene& scene, const ModuleTable& modul
         row.push_back(fmt("%.1f", static_cast<double>(counters.intersection_tests) / n));
         tables.speed.row(row);
     }
-    const size_t max_rays = opt.quick ? 65536 : sets[2].rays.size();
-    add_what_if_rows(tables.what_if, name, scene, modules, sets[0].rays, "camera",
-                     sets[1].rays, opt.repeats, max_rays);
-    add_what_if_rows(tables.what_if, name, scene, modules, sets[2].rays, "random", {},
-                     opt.repeats, max_rays);
+    for (const QuerySet& q : sets)
+        two_thread_row(name, scene, modules, peer[0].get(), q, opt.repeats,
+                       tables.speed2);
 }
 
 }  // namespace
@@ -177,15 +218,19 @@ void bench_scene(const std::string& name, Scene& scene, const ModuleTable& modul
 void run_scene_section(const BenchOptions& opt) {
     print_heading(
         "2. Scenes: raylab against Embree on the same rays",
-        fmt("%s. raylab: reference modules through Scene::closest_hit / any_hit, one "
-            "thread. Embree: default build quality, scene flags none or "
+        fmt("%s. raylab: reference modules through Scene::closest_hit / any_hit, which "
+            "run the reference's engine (raylab/engine.h); module path: the same "
+            "modules called once per primitive test through the same BVH. raylab "
+            "commit: validation, BVH build (two threads above 16,384 primitives), the "
+            "engine's slots. Embree: default (MEDIUM) build quality, scene flags none or "
             "RTC_SCENE_FLAG_ROBUST, a device with threads=1. Camera rays: %dx%d pixel "
             "centres; shadow rays: the ones render() casts from those hits (recorded "
             "from the shadow module); random: as many incoherent rays from a sphere "
             "around the scene. Mrays/s: median of %d passes, raylab's and Embree's "
             "interleaved; raylab/Embree: raylab's speed divided by Embree's (1 = as "
-            "fast). nodes/ray, tests/ray: raylab's BVH nodes visited and primitive "
-            "tests.",
+            "fast). nodes/ray, tests/ray: raylab's 4-wide BVH nodes visited and "
+            "primitive tests. Two threads: each traces half of the rays, raylab (engine) "
+            "and Embree (no flags) interleaved.",
             peer_description().c_str(), opt.width, opt.height, opt.repeats));
     const ModuleTable modules = ModuleTable::make(ModuleSelection::all(Impl::reference));
     Tables tables;
@@ -198,12 +243,12 @@ void run_scene_section(const BenchOptions& opt) {
     tables.build.print();
     std::printf("### Speed (one thread)\n\n");
     tables.speed.print();
+    std::printf("### Speed (two threads, half of the rays each)\n\n");
+    tables.speed2.print();
     if (peer_available()) {
         std::printf("### Agreement of raylab with Embree\n\n");
         tables.agree.print();
     }
-    std::printf("### Where raylab's time goes (what-if, same BVH)\n\n");
-    tables.what_if.print();
 }
 
 }  // namespace raylab::bench

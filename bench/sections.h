@@ -18,4 +18,8 @@ void run_scene_section(const BenchOptions& options);
 /// all threads: time, Mrays/s, speed-up and the shadow rays skipped.
 void run_render_section(const BenchOptions& options);
 
+/// Section 4: meshes of 1e3 .. max_triangles triangles: build time against Embree's
+/// MEDIUM build on 1 and 2 threads, bytes per triangle, and time per ray against size.
+void run_scaling_section(const BenchOptions& options);
+
 }  // namespace raylab::bench

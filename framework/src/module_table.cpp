@@ -3,6 +3,7 @@
 // the viewer and raylab-render link it; a grading worker never does.
 #include <string>
 
+#include "raylab/engine.h"
 #include "raylab/error.h"
 #include "raylab/modules.h"
 
@@ -75,6 +76,9 @@ ModuleTable ModuleTable::make(const ModuleSelection& selection) {
 #define RAYLAB_FUNCTION(m, f) t.f = RAYLAB_PICK(m, f);
 #include "raylab/modules.def"
 #undef RAYLAB_PICK
+#if RAYLAB_HAVE_REFERENCE
+    t.engine = reference::geometry_engine();
+#endif
     return t;
 }
 

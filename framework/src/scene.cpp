@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "raylab/engine.h"
 #include "raylab/error.h"
 #include "raylab/refine.h"
 
@@ -153,82 +154,150 @@ void Scene::commit() {
     if (!std::isfinite(ambient) || ambient < 0.0f)
         throw Error("ambient term must be finite and non-negative");
     bvh_.build(boxes);
+    fill_slots();
 }
 
 Aabb Scene::bounds() const {
     return bvh_.empty() ? Aabb{} : bvh_.bounds();
 }
 
+void Scene::fill_slots() {
+    const std::vector<std::uint32_t>& prims = bvh_.prims();
+    slots_.resize(prims.size());
+    const size_t sphere_count = spheres.size();
+    for (size_t k = 0; k < prims.size(); ++k) {
+        if (prims[k] < sphere_count) {
+            const Sphere& s = spheres[prims[k]].sphere;
+            slots_[k] = Slot{s.c, Vec3(s.r, 0.0f, 0.0f), Vec3(0.0f)};
+        } else {
+            const SceneTriangle& t = triangles[prims[k] - sphere_count];
+            slots_[k] = Slot{t.v0, t.v1, t.v2};
+        }
+    }
+}
+
+namespace {
+
+// The engine, when the table runs the reference's intersection tests it reproduces
+const GeometryEngine* engine_for(const ModuleTable& m) {
+    const GeometryEngine* e = m.engine;
+    if (e && m.intersect_plane == e->intersect_plane &&
+        m.intersect_sphere == e->intersect_sphere &&
+        m.intersect_triangle == e->intersect_triangle)
+        return e;
+    return nullptr;
+}
+
+}  // namespace
+
+// Material and shading normal of the nearest hit, from the primitive it belongs to, and
+// its point refined on that primitive (refine_hit)
+void Scene::complete(Hit& hit, const Ray& r, const PrimRef& prim) const {
+    const std::int64_t sphere_count = static_cast<std::int64_t>(spheres.size());
+    int material = 0;
+    Vec3 ns = hit.n;
+    std::int64_t source = 0;
+    switch (prim.kind) {
+        case PrimRef::Kind::plane:
+            material = planes[prim.index].material;
+            source = -1 - static_cast<std::int64_t>(prim.index);
+            break;
+        case PrimRef::Kind::sphere:
+            material = spheres[prim.index].material;
+            source = prim.index;
+            break;
+        default: {
+            const SceneTriangle& t = triangles[prim.index];
+            material = t.material;
+            ns = interpolated_normal(t, hit);
+            source = sphere_count + prim.index;
+        }
+    }
+    refine_hit(*this, source, hit, r, ns);
+    finish(hit, r, material, ns);
+}
+
+// The engine finds the nearest primitive and its module's Hit
+std::optional<Hit> Scene::engine_closest_hit(const GeometryEngine& engine, const Ray& r,
+                                             TraceCounters& counters) const {
+    Hit hit;
+    const PrimRef prim = engine.closest_hit(*this, r, counters, hit);
+    if (prim.kind == PrimRef::Kind::none) return std::nullopt;
+    complete(hit, r, prim);
+    return hit;
+}
+
 std::optional<Hit> Scene::closest_hit(const ModuleTable& modules, const Ray& r,
                                       TraceCounters& counters) const {
+    if (const GeometryEngine* engine = engine_for(modules))
+        return engine_closest_hit(*engine, r, counters);
     // Closest hit: every accepted hit shrinks tmax, so farther ones are rejected
     Ray ray = r;
     std::optional<Hit> best;
-    int best_material = 0;
-    Vec3 best_ns(0.0f);
-    std::int64_t best_source = 0;  // see refine_hit
-    for (const ScenePlane& p : planes) {
+    PrimRef best_prim;
+    for (size_t k = 0; k < planes.size(); ++k) {
         ++counters.intersection_tests;
-        if (auto hit = modules.intersect_plane(ray, p.plane)) {
+        if (auto hit = modules.intersect_plane(ray, planes[k].plane)) {
             ray.tmax = hit->t;
             best = hit;
-            best_material = p.material;
-            best_ns = hit->n;
-            best_source = -1 - (&p - planes.data());
+            best_prim = {PrimRef::Kind::plane, static_cast<std::uint32_t>(k)};
         }
     }
     const std::uint32_t sphere_count = static_cast<std::uint32_t>(spheres.size());
+    const std::uint32_t* prims = bvh_.prims().data();
     bvh_.traverse(
         ray,
-        [&](std::uint32_t prim, float& tmax) {
-            ++counters.intersection_tests;
-            ray.tmax = tmax;
-            if (prim < sphere_count) {
-                const SceneSphere& s = spheres[prim];
-                if (auto hit = modules.intersect_sphere(ray, s.sphere)) {
-                    tmax = hit->t;
-                    best = hit;
-                    best_material = s.material;
-                    best_ns = hit->n;
-                    best_source = prim;
+        [&](std::uint32_t first, std::uint32_t count, float& tmax) {
+            for (std::uint32_t k = first; k < first + count; ++k) {
+                ++counters.intersection_tests;
+                ray.tmax = tmax;
+                const std::uint32_t p = prims[k];
+                std::optional<Hit> hit;
+                PrimRef prim;
+                if (p < sphere_count) {
+                    hit = modules.intersect_sphere(ray, spheres[p].sphere);
+                    prim = {PrimRef::Kind::sphere, p};
+                } else {
+                    const SceneTriangle& t = triangles[p - sphere_count];
+                    hit = modules.intersect_triangle(ray, t.v0, t.v1, t.v2);
+                    prim = {PrimRef::Kind::triangle, p - sphere_count};
                 }
-            } else {
-                const SceneTriangle& t = triangles[prim - sphere_count];
-                if (auto hit = modules.intersect_triangle(ray, t.v0, t.v1, t.v2)) {
+                if (hit) {
                     tmax = hit->t;
                     best = hit;
-                    best_material = t.material;
-                    best_ns = interpolated_normal(t, *hit);
-                    best_source = prim;
+                    best_prim = prim;
                 }
             }
             return false;
         },
         counters.bvh_nodes);
-    if (best) {
-        refine_hit(*this, best_source, *best, r, best_ns);
-        finish(*best, r, best_material, best_ns);
-    }
+    if (best) complete(*best, r, best_prim);
     return best;
 }
 
 bool Scene::any_hit(const ModuleTable& modules, const Ray& r,
                     TraceCounters& counters) const {
+    if (const GeometryEngine* engine = engine_for(modules))
+        return engine->any_hit(*this, r, counters);
     for (const ScenePlane& p : planes) {
         ++counters.intersection_tests;
         if (modules.intersect_plane(r, p.plane)) return true;
     }
     const std::uint32_t sphere_count = static_cast<std::uint32_t>(spheres.size());
+    const std::uint32_t* prims = bvh_.prims().data();
     bool hit = false;
     bvh_.traverse(
         r,
-        [&](std::uint32_t prim, float&) {
-            ++counters.intersection_tests;
-            if (prim < sphere_count) {
-                hit = modules.intersect_sphere(r, spheres[prim].sphere).has_value();
-            } else {
-                const SceneTriangle& t = triangles[prim - sphere_count];
-                hit = modules.intersect_triangle(r, t.v0, t.v1, t.v2).has_value();
+        [&](std::uint32_t first, std::uint32_t count, float&) {
+            for (std::uint32_t k = first; k < first + count && !hit; ++k) {
+                ++counters.intersection_tests;
+                const std::uint32_t p = prims[k];
+                if (p < sphere_count) {
+                    hit = modules.intersect_sphere(r, spheres[p].sphere).has_value();
+                } else {
+                    const SceneTriangle& t = triangles[p - sphere_count];
+                    hit = modules.intersect_triangle(r, t.v0, t.v1, t.v2).has_value();
+                }
             }
             return hit;
         },

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdio>
+#include <cstdlib>
 #include <ostream>
 #include <string>
 
@@ -23,10 +24,17 @@ inline std::ostream& operator<<(std::ostream& os, const Ray& r) {
               << ", tmax=" << r.tmax << "}";
 }
 
-/// The table with every module switched to the reference.
+/// The table with every module switched to the reference. The scene's queries run in
+/// the reference's engine (raylab/engine.h); with RAYLAB_TEST_PATH=module in the
+/// environment they call the modules per primitive instead, so one test binary checks
+/// both paths (tests/stress/CMakeLists.txt runs the stress suite both ways).
 inline const ModuleTable& reference_modules() {
-    static const ModuleTable table =
-        ModuleTable::make(ModuleSelection::all(Impl::reference));
+    static const ModuleTable table = [] {
+        ModuleTable t = ModuleTable::make(ModuleSelection::all(Impl::reference));
+        const char* path = std::getenv("RAYLAB_TEST_PATH");
+        if (path && std::string(path) == "module") t.engine = nullptr;
+        return t;
+    }();
     return table;
 }
 

@@ -111,6 +111,49 @@ TEST_SUITE("scene") {
         }
     }
 
+    TEST_CASE("the 4-wide slab test keeps rays lying in a box face's plane") {
+        // A 16 x 16 grid of quads in x in [-1, 0], y in [-1, 1] at z = 0, with the axes
+        // rotated so that x is each axis in turn: enough for interior nodes, whose child
+        // boxes have faces at x = 0. Rays at x = 0 along w.x = +-0 give 0 * inf = NaN for
+        // that axis, which must not cull the box
+        for (int axis = 0; axis < 3; ++axis) {
+            const auto rotate = [axis](float x, float y, float z) {
+                Vec3 v;
+                v[axis] = x, v[(axis + 1) % 3] = y, v[(axis + 2) % 3] = z;
+                return v;
+            };
+            Scene scene;
+            scene.materials.push_back(Material{"grey", Vec3(0.5f), Vec3(0.0f)});
+            for (int i = 0; i < 16; ++i) {
+                for (int j = 0; j < 16; ++j) {
+                    const float x0 = -1.0f + i / 16.0f, x1 = -1.0f + (i + 1) / 16.0f;
+                    const float y0 = -1.0f + j / 8.0f, y1 = -1.0f + (j + 1) / 8.0f;
+                    const Vec3 a = rotate(x0, y0, 0), b = rotate(x1, y0, 0),
+                               c = rotate(x1, y1, 0), d = rotate(x0, y1, 0);
+                    scene.triangles.push_back(SceneTriangle{a, b, c});
+                    scene.triangles.push_back(SceneTriangle{a, c, d});
+                }
+            }
+            scene.commit();
+            REQUIRE(scene.bvh().node_count() > 1);
+            int hits = 0;
+            for (const float zero : {0.0f, -0.0f}) {
+                for (int k = 0; k <= 40; ++k) {
+                    const Ray r{rotate(0.0f, -0.95f + k * 0.0475f, 3.0f),
+                                rotate(zero, 0, -1), 0.0f, kInfinity};
+                    INFO("axis " << axis << ": " << r);
+                    TraceCounters c;
+                    const bool brute = brute_force_closest(scene, r).has_value();
+                    CHECK(scene.closest_hit(reference_modules(), r, c).has_value() ==
+                          brute);
+                    CHECK(scene.any_hit(reference_modules(), r, c) == brute);
+                    hits += brute;
+                }
+            }
+            CHECK(hits > 40);  // the kernel hits the edge x = 0: the rays test the BVH
+        }
+    }
+
     TEST_CASE(
         "closest hit respects tmin and tmax and fills material and a facing normal") {
         Scene scene;

@@ -14,6 +14,8 @@
 
 namespace raylab {
 
+struct GeometryEngine;
+
 /// The modules in teaching order (raylab/modules.def); the value + 1 is the module
 /// number.
 enum class Module {
@@ -67,6 +69,9 @@ std::string describe(const ModuleSelection& selection);
 struct ModuleTable {
 #define RAYLAB_FUNCTION(e, f) decltype(&student::f) f;
 #include "raylab/modules.def"
+    /// The reference's fast path for the scene's queries (raylab/engine.h), or null. The
+    /// scene uses it only while the three intersect_* members are the reference's.
+    const GeometryEngine* engine = nullptr;
     /// The table for selection. Throws raylab::Error when it asks for a reference that
     /// this build does not have. Defined in the glue library (raylab), which links both
     /// the student's and the reference's code: raylab_core never refers to either.

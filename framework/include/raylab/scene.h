@@ -2,7 +2,9 @@
 //
 // Planes are unbounded and tested one by one; spheres and triangles live in one BVH.
 // Every intersection goes through the ModuleTable, so the student's or the reference's
-// intersect_* runs, and the counters record how much work a query did.
+// intersect_* runs, and the counters record how much work a query did. When the table
+// holds the reference's three intersect_* functions, the query runs in the reference's
+// engine instead (raylab/engine.h): same hits, same counts, fewer calls.
 #pragma once
 
 #include <cstdint>
@@ -12,6 +14,7 @@
 
 #include "raylab/bvh.h"
 #include "raylab/contract.h"
+#include "raylab/engine.h"
 #include "raylab/modules.h"
 
 namespace raylab {
@@ -55,7 +58,7 @@ void validate(const View& view);
 /// Work counters of the queries; one per thread, summed per frame.
 struct TraceCounters {
     std::uint64_t intersection_tests = 0;  ///< primitive tests (plane, sphere, triangle)
-    std::uint64_t bvh_nodes = 0;           ///< BVH nodes whose box was tested
+    std::uint64_t bvh_nodes = 0;  ///< 4-wide BVH nodes whose children's boxes were tested
 };
 
 class Scene {
@@ -88,8 +91,27 @@ class Scene {
 
     const Bvh& bvh() const { return bvh_; }
 
+    /// A sphere or triangle in BVH slot order, for the engine: a triangle's vertices
+    /// (a, b, c), or a sphere's centre a and radius b.x. Slot k holds primitive
+    /// bvh().prims()[k]: spheres are 0 .. spheres.size() - 1, triangles follow.
+    struct Slot {
+        Vec3 a, b, c;
+    };
+    const std::vector<Slot>& slots() const { return slots_; }
+
+    /// Bytes of the acceleration data: BVH nodes, primitive order and slots.
+    size_t acceleration_bytes() const {
+        return bvh_.bytes() + slots_.size() * sizeof(Slot);
+    }
+
   private:
+    void fill_slots();
+    void complete(Hit& hit, const Ray& r, const PrimRef& prim) const;
+    std::optional<Hit> engine_closest_hit(const GeometryEngine& engine, const Ray& r,
+                                          TraceCounters& counters) const;
+
     Bvh bvh_;  // over spheres (first) and triangles (after them)
+    std::vector<Slot> slots_;
 };
 
 /// The Occluder the shadow module receives: the scene's any-hit query, counted.

@@ -1,0 +1,49 @@
+// raylab/engine.h: the interface of a geometry engine, a faster way to run the
+// reference's intersection tests inside the scene's queries.
+//
+// Scene::closest_hit and Scene::any_hit normally call the module table once per
+// primitive. When the table selects the reference for planes, spheres and triangles,
+// they hand the whole query to the engine instead: the same BVH traversal with the
+// reference's tests inlined, computing only t (and, for an accepted triangle, its
+// normal and uv), and the Hit built once, for the nearest primitive. The engine lives in
+// the reference library (solutions/engine_geometry.cpp), which ships compiled only, so
+// its copy of the reference's numerics is not readable source in a student release;
+// ModuleTable::make (the glue, linked with the reference) puts it in the table.
+#pragma once
+
+#include <cstdint>
+
+#include "raylab/contract.h"
+
+namespace raylab {
+
+class Scene;
+struct TraceCounters;
+
+/// The primitive a query found nearest.
+struct PrimRef {
+    enum class Kind : std::uint8_t { none, plane, sphere, triangle };
+    Kind kind = Kind::none;
+    std::uint32_t index = 0;  ///< into Scene::planes, spheres or triangles
+};
+
+struct GeometryEngine {
+    /// The module functions whose results the engine reproduces: the scene uses the
+    /// engine only when the table holds exactly these.
+    decltype(&student::intersect_plane) intersect_plane;
+    decltype(&student::intersect_sphere) intersect_sphere;
+    decltype(&student::intersect_triangle) intersect_triangle;
+    /// The primitive whose hit the module path would return, counting the same tests;
+    /// when there is one, hit holds what its module returns (t, position, n, uv).
+    PrimRef (*closest_hit)(const Scene& scene, const Ray& r, TraceCounters& counters,
+                           Hit& hit);
+    /// What the module path's any-hit returns.
+    bool (*any_hit)(const Scene& scene, const Ray& r, TraceCounters& counters);
+};
+
+namespace reference {
+/// The reference's engine; defined in the reference library.
+const GeometryEngine* geometry_engine();
+}  // namespace reference
+
+}  // namespace raylab

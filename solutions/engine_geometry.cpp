@@ -1,0 +1,233 @@
+// The reference's geometry engine (raylab/engine.h): the scene's closest-hit and any-hit
+// queries with the reference's intersection tests inlined into the BVH traversal.
+//
+// Not a module: no student writes it, and it ships only compiled, inside the reference
+// library, because it repeats the reference's numerics. Each test below computes only t,
+// with exactly the operations of its module (solutions/03_plane.cpp, 04_sphere.cpp,
+// 05_triangle.cpp; -ffp-contract=off keeps them unfused), so it accepts exactly the
+// primitives the module accepts, and builds the nearest one's Hit with the module's
+// expressions.
+// tests/framework/test_engine.cpp renders scenes both ways and compares, and
+// tests/stress runs on both paths.
+#include <algorithm>
+#include <cmath>
+
+#include "raylab/engine.h"
+#include "raylab/scene.h"
+
+namespace raylab::reference {
+
+namespace {
+
+// intersect_plane's t, or NaN when it returns nullopt
+inline float plane_t(const Ray& r, const Plane& plane, float tmax) {
+    const float wn = glm::dot(r.w, plane.n);
+    if (wn == 0.0f) return NAN;
+    const double dist =
+        glm::dot(DVec3(r.o), DVec3(plane.n)) + static_cast<double>(plane.d);
+    const float t = static_cast<float>(-dist / static_cast<double>(wn));
+    if (!(t >= r.tmin && t <= tmax) || std::isinf(t)) return NAN;
+    return t;
+}
+
+// intersect_sphere's t (Ray Tracing Gems ch. 7; rays starting on the sphere in double,
+// issue 8 B5), or NaN
+inline float sphere_t(const Ray& r, const Vec3& centre, float radius, float tmax) {
+    const Vec3 f = r.o - centre;
+    const float rr = radius * radius, ff = glm::dot(f, f);
+    float c = ff - rr;
+    float b, disc;
+    if (std::abs(c) > 0x1p-16f * (ff + rr)) {
+        b = glm::dot(f, r.w);
+        const Vec3 l = f - b * r.w;
+        disc = rr - glm::dot(l, l);
+    } else {
+        const DVec3 fd = DVec3(r.o) - DVec3(centre), w(r.w);
+        const double rrd = double(radius) * double(radius), bd = glm::dot(fd, w);
+        const DVec3 l = fd - bd * w;
+        c = static_cast<float>(glm::dot(fd, fd) - rrd);
+        b = static_cast<float>(bd);
+        disc = static_cast<float>(rrd - glm::dot(l, l));
+    }
+    if (disc < 0.0f) return NAN;
+    const float q = -b - std::copysign(std::sqrt(disc), b);
+    float t0 = q;
+    float t1 = q != 0.0f ? c / q : 0.0f;
+    if (t0 > t1) std::swap(t0, t1);
+    if (t0 >= r.tmin && t0 <= tmax) return t0;
+    if (t1 >= r.tmin && t1 <= tmax) return t1;
+    return NAN;
+}
+
+// The per-ray part of the watertight test (Woop, Benthin and Wald, JCGT 2013): the
+// permutation that makes the largest |w| component z, and the shear
+struct WoopRay {
+    double ox, oy, oz;
+    int kx, ky, kz;
+    double sx, sy, sz;
+    bool valid;  // false: w = 0, every triangle is missed
+
+    explicit WoopRay(const Ray& r) : ox(r.o.x), oy(r.o.y), oz(r.o.z) {
+        const DVec3 w(r.w.x, r.w.y, r.w.z);
+        const DVec3 aw = glm::abs(w);
+        kz = aw.x > aw.y ? (aw.x > aw.z ? 0 : 2) : (aw.y > aw.z ? 1 : 2);
+        kx = kz == 2 ? 0 : kz + 1;
+        ky = kx == 2 ? 0 : kx + 1;
+        valid = w[kz] != 0.0;
+        sz = valid ? 1.0 / w[kz] : 0.0;
+        sx = -w[kx] * sz;
+        sy = -w[ky] * sz;
+    }
+    void transform(const Vec3& v, double& x, double& y, double& z) const {
+        const DVec3 p(double(v.x) - ox, double(v.y) - oy, double(v.z) - oz);
+        z = p[kz];
+        x = p[kx] + sx * z;
+        y = p[ky] + sy * z;
+    }
+};
+
+// What intersect_triangle's Hit holds besides t and position
+struct TriangleExtra {
+    Vec3 n;
+    Vec2 uv;
+};
+
+// intersect_triangle's t, or NaN: the same operations in the same order; on a hit, its
+// normal and uv in extra
+inline float triangle_t(const Ray& r, const WoopRay& q, const Scene::Slot& tri,
+                        float tmax, TriangleExtra& extra) {
+    if (!q.valid) return NAN;
+    double x0, y0, z0, x1, y1, z1, x2, y2, z2;
+    q.transform(tri.a, x0, y0, z0);
+    q.transform(tri.b, x1, y1, z1);
+    q.transform(tri.c, x2, y2, z2);
+    const double e0 = x1 * y2 - y1 * x2;
+    const double e1 = x2 * y0 - y2 * x0;
+    const double e2 = x0 * y1 - y0 * x1;
+    if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0)) return NAN;
+    const double det = e0 + e1 + e2;
+    if (det == 0.0) return NAN;
+    z0 *= q.sz, z1 *= q.sz, z2 *= q.sz;
+    const double t_scaled = e0 * z0 + e1 * z1 + e2 * z2;
+    const double inv_det = 1.0 / det;
+    const double td = t_scaled * inv_det;
+    // pbrt-v4 §6.8.7's conservative t > 0, with double's gamma
+    constexpr double u = 0.5 * std::numeric_limits<double>::epsilon();
+    const auto gamma = [](int n) { return n * u / (1 - n * u); };
+    const double max_z = std::max({std::abs(z0), std::abs(z1), std::abs(z2)});
+    const double max_x = std::max({std::abs(x0), std::abs(x1), std::abs(x2)});
+    const double max_y = std::max({std::abs(y0), std::abs(y1), std::abs(y2)});
+    const double dz = gamma(3) * max_z;
+    const double dx = gamma(5) * (max_x + max_z), dy = gamma(5) * (max_y + max_z);
+    const double de = 2 * (gamma(2) * max_x * max_y + dy * max_x + dx * max_y);
+    const double max_e = std::max({std::abs(e0), std::abs(e1), std::abs(e2)});
+    const double dt =
+        3 * (gamma(3) * max_e * max_z + de * max_z + dz * max_e) * std::abs(inv_det);
+    if (!(td > dt)) return NAN;
+    const float t = static_cast<float>(td);
+    if (!(t >= r.tmin && t <= tmax)) return NAN;
+    // The module also refuses a triangle whose normal has no length
+    const DVec3 N = glm::cross(DVec3(tri.b) - DVec3(tri.a), DVec3(tri.c) - DVec3(tri.a));
+    const double len = glm::length(N);
+    if (!(len > 0.0)) return NAN;
+    extra.n = Vec3(N / len);
+    extra.uv = Vec2(static_cast<float>(e1 * inv_det), static_cast<float>(e2 * inv_det));
+    return t;
+}
+
+// t of the primitive in slot k, or NaN
+inline float slot_t(const Scene& scene, const Ray& r, const WoopRay& q, std::uint32_t k,
+                    float tmax, TriangleExtra& extra) {
+    const Scene::Slot& slot = scene.slots()[k];
+    if (scene.bvh().prims()[k] < scene.spheres.size())
+        return sphere_t(r, slot.a, slot.b.x, tmax);
+    return triangle_t(r, q, slot, tmax, extra);
+}
+
+// The nearest primitive and its Hit as its module returns it: t, position, normal, uv
+// (material and shading normal are the scene's to fill)
+PrimRef closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, Hit& hit) {
+    PrimRef best;
+    float best_t = r.tmax;
+    for (size_t k = 0; k < scene.planes.size(); ++k) {
+        ++counters.intersection_tests;
+        const float t = plane_t(r, scene.planes[k].plane, best_t);
+        if (!std::isnan(t)) {
+            best_t = t;
+            best = {PrimRef::Kind::plane, static_cast<std::uint32_t>(k)};
+        }
+    }
+    const WoopRay q(r);
+    Ray ray = r;
+    ray.tmax = best_t;
+    std::uint32_t best_slot = 0;
+    bool in_bvh = false;
+    TriangleExtra extra, best_extra;
+    scene.bvh().traverse(
+        ray,
+        [&](std::uint32_t first, std::uint32_t count, float& tmax) {
+            counters.intersection_tests += count;
+            for (std::uint32_t k = first; k < first + count; ++k) {
+                const float t = slot_t(scene, r, q, k, tmax, extra);
+                if (!std::isnan(t)) {
+                    tmax = best_t = t;
+                    best_slot = k;
+                    best_extra = extra;
+                    in_bvh = true;
+                }
+            }
+            return false;
+        },
+        counters.bvh_nodes);
+    if (best.kind == PrimRef::Kind::none && !in_bvh) return best;
+    // The module's Hit, from the values of the accepted test (same expressions)
+    hit = Hit{};
+    hit.t = best_t;
+    hit.position = r.o + best_t * r.w;
+    if (!in_bvh) {
+        hit.n = scene.planes[best.index].plane.n;
+        return best;
+    }
+    const std::uint32_t p = scene.bvh().prims()[best_slot];
+    const std::uint32_t sphere_count = static_cast<std::uint32_t>(scene.spheres.size());
+    if (p < sphere_count) {
+        const Sphere& sphere = scene.spheres[p].sphere;
+        hit.n = (hit.position - sphere.c) / sphere.r;
+        return {PrimRef::Kind::sphere, p};
+    }
+    hit.n = best_extra.n;
+    hit.uv = best_extra.uv;
+    return {PrimRef::Kind::triangle, p - sphere_count};
+}
+
+bool any_hit(const Scene& scene, const Ray& r, TraceCounters& counters) {
+    for (const ScenePlane& p : scene.planes) {
+        ++counters.intersection_tests;
+        if (!std::isnan(plane_t(r, p.plane, r.tmax))) return true;
+    }
+    const WoopRay q(r);
+    bool hit = false;
+    scene.bvh().traverse(
+        r,
+        [&](std::uint32_t first, std::uint32_t count, float&) {
+            for (std::uint32_t k = first; k < first + count && !hit; ++k) {
+                ++counters.intersection_tests;
+                TriangleExtra extra;
+                const float t = slot_t(scene, r, q, k, r.tmax, extra);
+                hit = !std::isnan(t);
+            }
+            return hit;
+        },
+        counters.bvh_nodes);
+    return hit;
+}
+
+}  // namespace
+
+const GeometryEngine* geometry_engine() {
+    static const GeometryEngine engine{&intersect_plane, &intersect_sphere,
+                                       &intersect_triangle, &closest_hit, &any_hit};
+    return &engine;
+}
+
+}  // namespace raylab::reference
