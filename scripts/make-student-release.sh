@@ -38,8 +38,10 @@ case ${1:-} in -h | --help) usage; exit 0 ;; esac
 absolute() { [[ $1 == /* ]] && printf '%s' "$1" || printf '%s/%s' "$PWD" "$1"; }
 OUT=$(absolute "${1:-$RAYLAB_ROOT/build/student-release/raylab}")
 BUILD=$(absolute "${RELEASE_BUILD_DIR:-$RAYLAB_ROOT/build-student-release}")
-MODULES=(01_pixel_loop 02_camera 03_plane 04_sphere 05_triangle 06_point_light 07_lambert
-    08_shadows)
+# The modules, from the registry (as scripts/grade.sh reads them)
+mapfile -t MODULES < <(sed -n 's/^RAYLAB_MODULE([a-z_0-9]*, "\([0-9][0-9]_[a-z_0-9]*\)".*/\1/p' \
+    "$RAYLAB_ROOT/framework/include/raylab/modules.def")
+((${#MODULES[@]})) || die "no modules in framework/include/raylab/modules.def"
 t0=$SECONDS
 
 have cmake || die "cmake is missing: scripts/install-deps.sh build"
