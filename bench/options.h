@@ -11,9 +11,13 @@ namespace raylab::bench {
 /// of about 30 s.
 struct BenchOptions {
     bool help = false;
-    bool kernels = true;        ///< section 1: kernels, run time against error
-    bool scenes = true;         ///< section 2: raylab against Embree on the same rays
-    bool render = true;         ///< section 3: render() and the work it skips
+    bool kernels = true;       ///< section 1: kernels, run time against error
+    bool scenes = true;        ///< section 2: raylab against Embree on the same rays
+    bool render = true;        ///< section 3: render() and the work it skips
+    bool sampling = true;      ///< section 4: sampling schemes, time against error
+    int sampling_width = 240;  ///< image size of section 4 (quick: 160 x 120)
+    int sampling_height = 180;
+    std::string out_dir = ".";  ///< where section 4 writes sampling.csv and .svg
     bool quick = false;         ///< also thins the what-if ray sets to 65536 rays
     int repeats = 5;            ///< timed repeats per measurement (median reported)
     int kernel_rays = 1 << 17;  ///< rays per kernel ray set

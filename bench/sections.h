@@ -18,4 +18,9 @@ void run_scene_section(const BenchOptions& options);
 /// all threads: time, Mrays/s, speed-up and the shadow rays skipped.
 void run_render_section(const BenchOptions& options);
 
+/// Section 4: RMSE against a converged image versus render time for the pixel sampling
+/// schemes and uniform against stratified area-light samples; writes CSV and SVG
+/// (section_sampling.cpp, docs/sampling-benchmarks.md).
+void run_sampling_section(const BenchOptions& options);
+
 }  // namespace raylab::bench
