@@ -183,8 +183,8 @@ void aa_study(const Scene& scene, const BenchOptions& opt, const ModuleTable& mo
             points.push_back(p);
         }
     }
-    for (int n : {4, 8}) {
-        for (float threshold : {0.2f, 0.1f, 0.05f, 0.02f, 0.01f}) {
+    for (int n : {4, 5, 8}) {
+        for (float threshold : {0.2f, 0.1f, 0.05f, 0.02f}) {
             RenderSettings s = base;
             s.spp = n * n;
             s.sampling = PixelSampling::adaptive;
