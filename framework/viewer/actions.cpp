@@ -180,6 +180,7 @@ void submit_if_dirty(Viewer& v) {
     job.settings = s.settings;
     job.modules = s.modules;
     job.compare = s.compare;
+    job.show_samples = s.show_samples;
     job.interactive = s.interacting;
     job.preview_factor =
         s.interacting ? preview_factor(v.frames.last_full.milliseconds) : 1;

@@ -101,6 +101,7 @@ void init_viewer(Viewer& v, const Options& options, const ViewerOptions& viewer_
     if (viewer_options.compare && !reference_available())
         throw Error("--compare needs the reference solutions, and this build has none");
     s.compare = viewer_options.compare;
+    s.show_samples = viewer_options.show_samples;
     if (view && builtin) {
         s.view = view->view;
         s.scene.lights = view->lights;
