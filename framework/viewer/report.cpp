@@ -118,7 +118,7 @@ void write_report(const std::string& dir, const ReportInput& in) {
     std::error_code error;
     std::filesystem::create_directories(dir, error);
     if (error) throw Error(dir + ": cannot create the report folder: " + error.message());
-    save_view_file(dir + "/view.txt", in.view, in.lights);
+    save_view_file(dir + "/view.txt", in.view, in.lights, &in.settings);
 
     std::string settings = "# raylab viewer report\n";
     settings += "scene: " + in.scene_source + "\n";

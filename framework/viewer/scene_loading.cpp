@@ -105,6 +105,7 @@ void init_viewer(Viewer& v, const Options& options, const ViewerOptions& viewer_
     if (view && builtin) {
         s.view = view->view;
         s.scene.lights = view->lights;
+        view->apply_to(s.settings);
     }
     v.panel.view_edit = s.view;
     v.panel.size_edit[0] = s.settings.width;
@@ -159,6 +160,7 @@ bool finish_loading(Viewer& v) {
         if (status && status->view) {
             v.state.view = status->view->view;
             v.state.scene.lights = status->view->lights;
+            status->view->apply_to(v.state.settings);
             v.panel.view_edit = v.state.view;
         }
         return true;
