@@ -58,10 +58,14 @@ Point measure(const Scene& scene, const RenderSettings& settings, const Image& r
 
 // ---- The plot -------------------------------------------------------------------------
 
-const char* const kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd"};
+const char* const kColours[] = {"#1f77b4", "#d62728", "#2ca02c",
+                                "#9467bd", "#ff7f0e", "#17becf"};
+constexpr int kColourCount = 6;
 
-// One panel per (scene, study): log10 ms across, log10 RMSE up
-void write_svg(const std::string& path, const std::vector<Point>& points) {
+// One panel per (scene, study): log10 of the cost across (ms, or rays when by_rays),
+// log10 RMSE up
+void write_svg(const std::string& path, const std::vector<Point>& points, bool by_rays) {
+    const auto cost = [&](const Point& p) { return by_rays ? p.rays : p.ms; };
     std::vector<std::pair<std::string, std::string>> panels;
     for (const Point& p : points) {
         const auto key = std::make_pair(p.scene, p.study);
@@ -83,15 +87,16 @@ void write_svg(const std::string& path, const std::vector<Point>& points) {
                 mine.push_back(&p);
         double x0 = 1e30, x1 = -1e30, y0 = 1e30, y1 = -1e30;
         for (const Point* p : mine) {
-            x0 = std::min(x0, std::log10(p->ms)), x1 = std::max(x1, std::log10(p->ms));
+            x0 = std::min(x0, std::log10(cost(*p)));
+            x1 = std::max(x1, std::log10(cost(*p)));
             y0 = std::min(y0, std::log10(p->rmse)),
             y1 = std::max(y1, std::log10(p->rmse));
         }
         x0 = std::floor(x0 * 2) / 2, x1 = std::ceil(x1 * 2) / 2;
         y0 = std::floor(y0 * 2) / 2, y1 = std::ceil(y1 * 2) / 2;
         const double w = pw - margin - 20, h = ph - margin - 30;
-        const auto X = [&](double ms) {
-            return ox + margin + (std::log10(ms) - x0) / (x1 - x0) * w;
+        const auto X = [&](double c) {
+            return ox + margin + (std::log10(c) - x0) / (x1 - x0) * w;
         };
         const auto Y = [&](double e) {
             return oy + 30 + (y1 - std::log10(e)) / (y1 - y0) * h;
@@ -104,7 +109,7 @@ void write_svg(const std::string& path, const std::vector<Point>& points) {
         for (double e = x0; e <= x1 + 1e-9; e += 0.5) {
             const double x = ox + margin + (e - x0) / (x1 - x0) * w;
             out << "<text x='" << x << "' y='" << oy + 30 + h + 14
-                << "' text-anchor='middle'>" << fmt("%g", std::pow(10.0, e))
+                << "' text-anchor='middle'>" << fmt("%.3g", std::pow(10.0, e))
                 << "</text>\n";
         }
         for (double e = y0; e <= y1 + 1e-9; e += 0.5) {
@@ -114,7 +119,10 @@ void write_svg(const std::string& path, const std::vector<Point>& points) {
                 << "</text>\n";
         }
         out << "<text x='" << ox + margin + w / 2 << "' y='" << oy + ph - 8
-            << "' text-anchor='middle'>render time [ms], log scale</text>\n"
+            << "' text-anchor='middle'>"
+            << (by_rays ? (panels[k].second == "aa" ? "camera rays" : "shadow rays")
+                        : "render time [ms]")
+            << ", log scale</text>\n"
             << "<text x='" << ox + 12 << "' y='" << oy + 30 + h / 2
             << "' transform='rotate(-90 " << ox + 12 << " " << oy + 30 + h / 2
             << ")' text-anchor='middle'>RMSE, log scale</text>\n";
@@ -126,19 +134,20 @@ void write_svg(const std::string& path, const std::vector<Point>& points) {
             std::vector<const Point*> line;
             for (const Point* p : mine)
                 if (p->scheme == schemes[s]) line.push_back(p);
+            // In order of samples: with noisy timings the line may turn back in time
             std::sort(line.begin(), line.end(),
-                      [](const Point* a, const Point* b) { return a->ms < b->ms; });
-            out << "<polyline fill='none' stroke='" << kColours[s % 4]
+                      [](const Point* a, const Point* b) { return a->rays < b->rays; });
+            out << "<polyline fill='none' stroke='" << kColours[s % kColourCount]
                 << "' stroke-width='1.5' points='";
             for (const Point* p : line)
-                out << X(p->ms) << "," << Y(p->rmse) << " ";
+                out << X(cost(*p)) << "," << Y(p->rmse) << " ";
             out << "'/>\n";
             for (const Point* p : line)
-                out << "<circle cx='" << X(p->ms) << "' cy='" << Y(p->rmse)
-                    << "' r='2.5' fill='" << kColours[s % 4] << "'/>\n";
+                out << "<circle cx='" << X(cost(*p)) << "' cy='" << Y(p->rmse)
+                    << "' r='2.5' fill='" << kColours[s % kColourCount] << "'/>\n";
             out << "<text x='" << ox + pw - 30 << "' y='" << oy + 46 + 14 * int(s)
-                << "' text-anchor='end' fill='" << kColours[s % 4] << "'>" << schemes[s]
-                << "</text>\n";
+                << "' text-anchor='end' fill='" << kColours[s % kColourCount] << "'>"
+                << schemes[s] << "</text>\n";
         }
     }
     out << "</svg>\n";
@@ -184,7 +193,7 @@ void aa_study(const Scene& scene, const BenchOptions& opt, const ModuleTable& mo
         }
     }
     for (int n : {4, 5, 8}) {
-        for (float threshold : {0.2f, 0.1f, 0.05f, 0.02f}) {
+        for (float threshold : {0.8f, 0.4f, 0.2f, 0.1f, 0.05f}) {
             RenderSettings s = base;
             s.spp = n * n;
             s.sampling = PixelSampling::adaptive;
@@ -307,9 +316,12 @@ void run_sampling_section(const BenchOptions& opt) {
         }
     }
     write_csv(opt.out_dir + "/sampling.csv", points);
-    write_svg(opt.out_dir + "/sampling.svg", points);
-    std::printf("\nWrote %s/sampling.csv and %s/sampling.svg\n\n", opt.out_dir.c_str(),
-                opt.out_dir.c_str());
+    write_svg(opt.out_dir + "/sampling.svg", points, false);
+    write_svg(opt.out_dir + "/sampling-rays.svg", points, true);
+    std::printf(
+        "\nWrote sampling.csv, sampling.svg (RMSE against time) and "
+        "sampling-rays.svg (against rays) in %s\n\n",
+        opt.out_dir.c_str());
 }
 
 }  // namespace raylab::bench
