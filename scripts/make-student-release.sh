@@ -7,7 +7,8 @@
 #
 # The release is this tree without what students must not have or cannot build: solutions/
 # (the reference), bench/ and tests/stress/ (they measure the reference), the instructor
-# guide and the benchmark notes. In their place it gets:
+# guide and the benchmark notes (with the sampling benchmark's plots and CSV). In their
+# place it gets:
 #   README.md             the students' README (scripts/release/README.md)
 #   reference/libraylab_reference.a
 #                         the reference compiled (no source): stubs fall back to it, the
@@ -74,6 +75,7 @@ done
 excluded() {
     case $1 in
         solutions/* | bench/* | tests/stress/* | docs/instructor-guide.md | docs/benchmarks.md | \
+            docs/sampling-benchmarks.md | docs/images/sampling-benchmark* | docs/data/* | \
             tests/data/golden/* | build*/* | scripts/release/* | README.md) return 0 ;;
     esac
     return 1
