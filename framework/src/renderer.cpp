@@ -1,5 +1,5 @@
-// The renderer (raylab/renderer.h): tiles on all cores, one camera ray per pixel, closest
-// hit, shading by the chosen mode.
+// The renderer (raylab/renderer.h): tiles on all cores, one camera ray per pixel (or the
+// sampling passes of render_sampling.cpp), closest hit, shading by the chosen mode.
 #include "raylab/renderer.h"
 
 #include <atomic>
