@@ -113,7 +113,8 @@ mkdir -p "$BUILD"
 cmake -S "$RAYLAB_ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WITH_GUI=OFF \
     -DRAYLAB_EXERCISES_DIR="$RAYLAB_ROOT/exercises" >"$BUILD/release-configure.log" 2>&1 ||
     die "configuring $BUILD/ failed: see $BUILD/release-configure.log"
-ninja -C "$BUILD" raylab-grading-tests >"$BUILD/release-build.log" 2>&1 ||
+ninja -C "$BUILD" raylab-grading-tests raylab-worker raylab-worker-reference \
+    >"$BUILD/release-build.log" 2>&1 ||
     die "building the graders failed: see $BUILD/release-build.log"
 RAYLAB_GRADE_IMPL=reference RAYLAB_GOLDEN_WRITE="$OUT/tests/data/golden" \
     "$BUILD/tests/grading/raylab-grading-tests" --no-colors >"$BUILD/release-golden.log" 2>&1 ||
