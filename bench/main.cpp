@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
         if (options.scenes) run_scene_section(options);
         if (options.render) run_render_section(options);
         if (options.scaling) run_scaling_section(options);
+        if (options.sampling) run_sampling_section(options);
         std::printf("Total %.1f s; load average at the end: %.2f\n", seconds_since(start),
                     load_average());
         return 0;

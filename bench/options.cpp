@@ -42,7 +42,7 @@ std::vector<double> parse_distances(const std::string& value) {
 }
 
 void parse_sections(const std::string& value, BenchOptions& o) {
-    o.kernels = o.scenes = o.render = o.scaling = false;
+    o.kernels = o.scenes = o.render = o.scaling = o.sampling = false;
     size_t start = 0;
     while (start <= value.size()) {
         const size_t comma = std::min(value.find(',', start), value.size());
@@ -55,11 +55,13 @@ void parse_sections(const std::string& value, BenchOptions& o) {
             o.render = true;
         } else if (word == "scaling") {
             o.scaling = true;
+        } else if (word == "sampling") {
+            o.sampling = true;
         } else if (word == "all") {
-            o.kernels = o.scenes = o.render = o.scaling = true;
+            o.kernels = o.scenes = o.render = o.scaling = o.sampling = true;
         } else {
             throw Error("unknown section '" + word +
-                        "' (kernels, scenes, render, scaling, all)");
+                        "' (kernels, scenes, render, scaling, sampling, all)");
         }
         start = comma + 1;
     }
@@ -71,7 +73,8 @@ std::string bench_help() {
     return "raylab-bench: run time against error of raylab's intersection kernels,\n"
            "raylab against Intel Embree on the same rays, and the renderer's cost.\n\n"
            "Usage: raylab-bench [options]\n\n"
-           "  --sections LIST   kernels,scenes,render,scaling or all (default all)\n"
+           "  --sections LIST   kernels,scenes,render,scaling,sampling or all (default all)\n"
+           "  --out DIR         where the sampling section writes sampling.csv/.svg (.)\n"
            "  --quick           a run of about 30 s: fewer rays, repeats and triangles\n"
            "  --repeats N       timed repeats per measurement, median reported (5; quick "
            "3)\n"
@@ -100,6 +103,8 @@ BenchOptions parse_bench_options(int argc, char** argv) {
             o.kernel_rays = 1 << 14;
             o.mesh_triangles = 100000;
             o.max_triangles = 100000;
+            o.sampling_width = 160;
+            o.sampling_height = 120;
         }
     }
     for (int k = 1; k < argc; ++k) {
@@ -113,6 +118,8 @@ BenchOptions parse_bench_options(int argc, char** argv) {
         } else if (arg == "--quick") {
         } else if (arg == "--sections") {
             parse_sections(value(), o);
+        } else if (arg == "--out") {
+            o.out_dir = value();
         } else if (arg == "--repeats") {
             o.repeats = static_cast<int>(parse_integer(arg, value(), 1, 1000));
         } else if (arg == "--rays") {

@@ -15,6 +15,10 @@ struct BenchOptions {
     bool scenes = true;         ///< section 2: raylab against Embree on the same rays
     bool render = true;         ///< section 3: render() and the work it skips
     bool scaling = true;        ///< section 4: build, memory and time against size
+    bool sampling = true;       ///< section 5: sampling schemes, time against error
+    int sampling_width = 240;   ///< image size of section 5 (quick: 160 x 120)
+    int sampling_height = 180;
+    std::string out_dir = ".";  ///< where section 5 writes sampling.csv and .svg
     bool quick = false;         ///< fewer rays, repeats and triangles
     int repeats = 5;            ///< timed repeats per measurement (median reported)
     int kernel_rays = 1 << 17;  ///< rays per kernel ray set

@@ -21,5 +21,9 @@ void run_render_section(const BenchOptions& options);
 /// Section 4: meshes of 1e3 .. max_triangles triangles: build time against Embree's
 /// MEDIUM build on 1 and 2 threads, bytes per triangle, and time per ray against size.
 void run_scaling_section(const BenchOptions& options);
+/// Section 5: RMSE against a converged image versus render time for the pixel sampling
+/// schemes and uniform against stratified area-light samples; writes CSV and SVG
+/// (section_sampling.cpp, docs/sampling-benchmarks.md).
+void run_sampling_section(const BenchOptions& options);
 
 }  // namespace raylab::bench

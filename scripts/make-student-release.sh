@@ -7,7 +7,8 @@
 #
 # The release is this tree without what students must not have or cannot build: solutions/
 # (the reference), bench/ and tests/stress/ (they measure the reference), the instructor
-# guide and the benchmark notes. In their place it gets:
+# guide and the benchmark notes (with the sampling benchmark's plots and CSV). In their
+# place it gets:
 #   README.md             the students' README (scripts/release/README.md)
 #   reference/libraylab_reference.a
 #                         the reference compiled (no source): stubs fall back to it, the
@@ -74,6 +75,7 @@ done
 excluded() {
     case $1 in
         solutions/* | bench/* | tests/stress/* | docs/instructor-guide.md | docs/benchmarks.md | \
+            docs/sampling-benchmarks.md | docs/images/sampling-benchmark* | docs/data/* | \
             tests/data/golden/* | build*/* | scripts/release/* | README.md) return 0 ;;
     esac
     return 1
@@ -111,7 +113,8 @@ mkdir -p "$BUILD"
 cmake -S "$RAYLAB_ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WITH_GUI=OFF \
     -DRAYLAB_EXERCISES_DIR="$RAYLAB_ROOT/exercises" >"$BUILD/release-configure.log" 2>&1 ||
     die "configuring $BUILD/ failed: see $BUILD/release-configure.log"
-ninja -C "$BUILD" raylab-grading-tests raylab-worker-reference >"$BUILD/release-build.log" 2>&1 ||
+ninja -C "$BUILD" raylab-grading-tests raylab-worker raylab-worker-reference \
+    >"$BUILD/release-build.log" 2>&1 ||
     die "building the graders failed: see $BUILD/release-build.log"
 RAYLAB_GRADE_IMPL=reference RAYLAB_GOLDEN_WRITE="$OUT/tests/data/golden" \
     "$BUILD/tests/grading/raylab-grading-tests" --no-colors >"$BUILD/release-golden.log" 2>&1 ||

@@ -8,7 +8,7 @@
 #                  build-docs/, headless, with Ninja when it is installed)
 #   --list         print the commands instead of running them
 #
-# The renders are deterministic (one ray through each pixel centre), so running the script
+# The renders are deterministic (one ray per pixel centre, or seeded samples), so running the script
 # again changes no file unless a reference module, a scene or the tone mapping changed.
 set -euo pipefail
 
@@ -39,6 +39,11 @@ images=(
     "07_lambert.png      --scene cornell --mode lambert --shadows off --width 400 --height 400"
     "08_shadows.png      --scene cornell --mode lambert --shadows on --width 400 --height 400"
     "08_shadows_dtu.png  --scene dtu --mode lambert --shadows on --width 480 --height 360"
+    "09_one_sample.png   --scene dtu --width 240 --height 180"
+    "09_antialiasing.png --scene dtu --width 240 --height 180 --spp 16 --aa stratified"
+    "09_adaptive.png     --scene dtu --width 240 --height 180 --spp 16 --aa adaptive"
+    "10_area_light.png   --scene cornell --width 400 --height 400 --light-size 0.4 --light-samples 64"
+    "10_area_light_dtu.png --scene dtu --width 480 --height 360 --light-size 1.5 --light-samples 64"
 )
 
 if $list; then

@@ -57,6 +57,34 @@ void check_fov(float fov, const std::string& what) {
                     num(kFovMin) + ", " + num(kFovMax) + "] degrees");
 }
 
+void check_samples_per_pixel(int spp, const std::string& what) {
+    int n = 1;
+    while (n * n < spp && n <= kMaxSamplesPerSide)
+        ++n;
+    if (spp < 1 || n > kMaxSamplesPerSide || n * n != spp)
+        throw Error(what + ": " + std::to_string(spp) +
+                    " samples per pixel is not a square n^2 with n in 1.." +
+                    std::to_string(kMaxSamplesPerSide) + " (1, 4, 9, 16, ...)");
+}
+
+void check_aa_threshold(float threshold, const std::string& what) {
+    if (!std::isfinite(threshold) || threshold < 0.0f || threshold > 1.0f)
+        throw Error(what + ": adaptive threshold " + num(threshold) +
+                    " is outside [0, 1] (a contrast (max - min) / (max + min))");
+}
+
+void check_light_size(float size, const std::string& what) {
+    if (!std::isfinite(size) || size < 0.0f || size > kMaxLightSize)
+        throw Error(what + ": light size " + num(size) + " is outside [0, " +
+                    num(kMaxLightSize) + "] (0: point lights)");
+}
+
+void check_light_samples(int n, const std::string& what) {
+    if (n < 1 || n > kMaxLightSamples)
+        throw Error(what + ": " + std::to_string(n) + " light samples is outside 1.." +
+                    std::to_string(kMaxLightSamples));
+}
+
 void check_point(const Vec3& p, const std::string& what) {
     if (!is_finite(p)) throw Error(what + ": " + vec(p) + " is not finite");
     if (!within(p, kMaxCoordinate))

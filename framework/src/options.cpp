@@ -65,8 +65,19 @@ Rendering:
   --shadows on|off      hard shadows (default on)
   --exposure EV         tone-mapping exposure in stops (default 0)
   --threads N           worker threads (default: all cores)
-Modules (names: pixel-loop camera plane sphere triangle point-light lambert shadows,
-IDs such as 04_sphere, numbers 1-8, or all):
+Sampling (modules 09 and 10; the defaults are one ray per pixel and point lights):
+  --spp N               samples per pixel, a square 1, 4, 9, 16, ... 1024 (default 1)
+  --aa SCHEME           grid, stratified (default) or adaptive: one sample everywhere,
+                        N where a pixel and its neighbours disagree
+  --aa-threshold C      adaptive: refine where the contrast exceeds C in [0, 1]
+                        (default 0.1)
+  --light-size S        replace each point light by a square area light of side S
+                        facing the scene (default 0: point lights)
+  --light-samples N     shadow rays per area light and point, 1..1024 (default 1)
+  --light-sampling S    stratified (default) or uniform
+  --seed N              seed of the random samples (default 1)
+Modules (names: pixel-loop camera plane sphere triangle point-light lambert shadows
+antialiasing area-light, IDs such as 04_sphere, numbers 1-10, or all):
   --student LIST        run the student's exercises/ code for these modules
   --reference LIST      run the reference solutions/ for these modules
                         (default: the student's code where started, else the reference;
@@ -123,6 +134,28 @@ Options parse_options(int argc, const char* const* argv, bool allow_extra) {
             check_exposure(o.exposure, flag);
         } else if (flag == "--threads") {
             o.settings.threads = parse_int(flag, value());
+        } else if (flag == "--spp") {
+            o.settings.spp = parse_int(flag, value());
+            check_samples_per_pixel(o.settings.spp, flag);
+        } else if (flag == "--aa") {
+            o.settings.sampling = parse_pixel_sampling(value());
+        } else if (flag == "--aa-threshold") {
+            o.settings.aa_threshold = parse_float(flag, value());
+            check_aa_threshold(o.settings.aa_threshold, flag);
+        } else if (flag == "--light-size") {
+            o.settings.light_size = parse_float(flag, value());
+            check_light_size(o.settings.light_size, flag);
+        } else if (flag == "--light-samples") {
+            o.settings.light_samples = parse_int(flag, value());
+            check_light_samples(o.settings.light_samples, flag);
+        } else if (flag == "--light-sampling") {
+            const std::string word = value();
+            if (word != "uniform" && word != "stratified")
+                throw Error(flag + ": '" + printable(word) +
+                            "' is neither uniform nor stratified");
+            o.settings.light_stratified = word == "stratified";
+        } else if (flag == "--seed") {
+            o.settings.seed = std::uint64_t(std::uint32_t(parse_int(flag, value())));
         } else if (flag == "--output" || flag == "-o") {
             o.output = value();
             check_output_path(o.output, OutputKind::image, flag);
@@ -203,6 +236,15 @@ std::uint32_t detect_stubs() {
                            {LightSample{Vec3(0, 1.0f, 0), 2.0f, Vec3(0.25f)}});
     (void)student::in_shadow(NothingOccludes{}, Vec3(0.0f), Vec3(0.0f, 1.0f, 0.0f),
                              LightSample{Vec3(0, 1.0f, 0), 2.0f, sample.Li});
+    (void)student::grid_samples(1);
+    (void)student::stratified_samples(1, PixelRng{});
+    (void)student::pixel_radiance(0, 0, 1, 1, {PixelSample{Vec2(0.5f), 1.0f}},
+                                  [](const Vec2&) { return Vec3(0.0f); });
+    (void)student::needs_more_samples({Vec3(0.0f), Vec3(1.0f)}, 0.5f);
+    (void)student::light_sample_points(1, true, PixelRng{});
+    (void)student::sample_area_light(
+        AreaLight{Vec3(0, 2, 0), Vec3(1, 0, 0), Vec3(0, 0, -1), Vec3(1.0f)}, Vec3(0.0f),
+        Vec2(0.5f), 1);
     return stub::called.exchange(0);
 }
 

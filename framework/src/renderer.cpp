@@ -1,5 +1,5 @@
-// The renderer (raylab/renderer.h): tiles on all cores, one camera ray per pixel, closest
-// hit, shading by the chosen mode.
+// The renderer (raylab/renderer.h): tiles on all cores, one camera ray per pixel (or the
+// sampling passes of render_sampling.cpp), closest hit, shading by the chosen mode.
 #include "raylab/renderer.h"
 
 #include <atomic>
@@ -8,6 +8,8 @@
 #include <thread>
 
 #include "raylab/error.h"
+#include "raylab/input_checks.h"
+#include "render_sampling.h"
 
 namespace raylab {
 
@@ -44,6 +46,10 @@ void validate(const RenderSettings& s) {
     if (s.threads < 0 || s.threads > 1024)
         throw Error("thread count " + std::to_string(s.threads) + " is outside 0..1024");
     if (!is_finite(s.background)) throw Error("background colour is not finite");
+    check_samples_per_pixel(s.spp, "samples per pixel");
+    check_aa_threshold(s.aa_threshold, "adaptive threshold");
+    check_light_size(s.light_size, "light size");
+    check_light_samples(s.light_samples, "light samples");
 }
 
 PinholeCamera make_camera(const ModuleTable& modules, const View& view) {
@@ -80,7 +86,8 @@ class PixelShader {
           settings_(settings),
           depth_range_(depth_range),
           counters_(counters),
-          occluder_(scene, modules, counters.trace) {}
+          occluder_(scene, modules, counters.trace),
+          centre_(scene.bounds().centre()) {}
 
     Vec3 radiance(const Vec2& uv, std::optional<Hit>* hit_out = nullptr,
                   Ray* ray_out = nullptr) {
@@ -91,6 +98,7 @@ class PixelShader {
             return settings_.background;
         ray.w /= len;
         ++counters_.camera_rays;
+        uv_ = uv;
         if (ray_out) *ray_out = ray;
         const std::optional<Hit> hit = scene_.closest_hit(modules_, ray, counters_.trace);
         if (hit_out) *hit_out = hit;
@@ -114,7 +122,12 @@ class PixelShader {
     // needed
     Vec3 direct_light(const Hit& hit, const Material& material) {
         visible_.clear();
-        for (const PointLight& light : scene_.lights) {
+        for (size_t k = 0; k < scene_.lights.size(); ++k) {
+            const PointLight& light = scene_.lights[k];
+            if (settings_.light_size > 0.0f) {
+                area_light(hit, light, k);
+                continue;
+            }
             const LightSample sample = modules_.sample_point_light(light, hit.position);
             // Light behind the surface: no contribution, no shadow ray
             if (!(glm::dot(hit.ns, sample.wi) > 0.0f)) {
@@ -136,6 +149,33 @@ class PixelShader {
                scene_.ambient * material.rho;
     }
 
+    // The area light that stands in for point light k (module 10): N samples, each with
+    // the backfacing skip and the shadow test of a point light
+    void area_light(const Hit& hit, const PointLight& light, size_t k) {
+        const AreaLight area = area_light_for(light, settings_.light_size, centre_);
+        const int N = settings_.light_samples;
+        xi_ = modules_.light_sample_points(N, settings_.light_stratified,
+                                           detail::light_rng(settings_, uv_, k));
+        for (const Vec2& xi : xi_) {
+            const LightSample sample =
+                modules_.sample_area_light(area, hit.position, xi, N);
+            if (!(glm::dot(hit.ns, sample.wi) > 0.0f)) {
+                ++counters_.backfacing;
+                continue;
+            }
+            if (!settings_.shadows) {
+                ++counters_.disabled;
+            } else {
+                const std::uint64_t before = occluder_.shadow_rays;
+                const bool blocked =
+                    modules_.in_shadow(occluder_, hit.position, hit.ns, sample);
+                counters_.shadow_rays += occluder_.shadow_rays - before;
+                if (blocked) continue;
+            }
+            visible_.push_back(sample);
+        }
+    }
+
     const Scene& scene_;
     const ModuleTable& modules_;
     const PinholeCamera& camera_;
@@ -144,6 +184,9 @@ class PixelShader {
     Counters& counters_;
     SceneOccluder occluder_;
     std::vector<LightSample> visible_;  // reused: no allocation per pixel
+    Vec3 centre_;                       // area lights face the scene's centre
+    Vec2 uv_{0.0f};                     // the camera sample being shaded
+    std::vector<Vec2> xi_;              // light sample points
 };
 
 // Distance at which the depth view turns black: the far side of the scene's bounds
@@ -181,36 +224,60 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
     const int tiles_y = (settings.height + kTileSize - 1) / kTileSize;
     const int tile_count = tiles_x * tiles_y;
     const int threads = std::min(thread_count(settings), tile_count);
-    std::atomic<int> next{0};
     std::vector<Counters> counters(static_cast<size_t>(threads));
-    std::vector<std::exception_ptr> errors(static_cast<size_t>(threads));
     const ImageView view_out = image.view();
-    const auto work = [&](int k) {
-        try {
-            PixelShader shader(scene, modules, camera, settings, range, counters[k]);
-            const PixelRadiance radiance = [&](const Vec2& uv) {
-                return shader.radiance(uv);
-            };
-            for (int t = next++; t < tile_count; t = next++) {
-                if (settings.cancel && settings.cancel->load(std::memory_order_relaxed))
-                    break;
-                const int x0 = (t % tiles_x) * kTileSize, y0 = (t / tiles_x) * kTileSize;
-                const Tile tile{x0, y0, std::min(x0 + kTileSize, settings.width),
-                                std::min(y0 + kTileSize, settings.height)};
-                modules.render_tile(tile, radiance, view_out);
+    if (settings.samples_map)
+        settings.samples_map->assign(size_t(settings.width) * size_t(settings.height), 1);
+    // One pass over all tiles on all threads; pass(tile, radiance) renders a tile
+    const auto run_pass = [&](const auto& pass) {
+        std::atomic<int> next{0};
+        std::vector<std::exception_ptr> errors(static_cast<size_t>(threads));
+        const auto work = [&](int k) {
+            try {
+                PixelShader shader(scene, modules, camera, settings, range, counters[k]);
+                const PixelRadiance radiance = [&](const Vec2& uv) {
+                    return shader.radiance(uv);
+                };
+                for (int t = next++; t < tile_count; t = next++) {
+                    if (settings.cancel &&
+                        settings.cancel->load(std::memory_order_relaxed))
+                        break;
+                    const int x0 = (t % tiles_x) * kTileSize;
+                    const int y0 = (t / tiles_x) * kTileSize;
+                    const Tile tile{x0, y0, std::min(x0 + kTileSize, settings.width),
+                                    std::min(y0 + kTileSize, settings.height)};
+                    pass(tile, radiance);
+                }
+            } catch (...) {
+                errors[k] = std::current_exception();
             }
-        } catch (...) {
-            errors[k] = std::current_exception();
+        };
+        std::vector<std::thread> pool;
+        for (int k = 1; k < threads; ++k)
+            pool.emplace_back(work, k);
+        work(0);
+        for (std::thread& t : pool)
+            t.join();
+        for (const std::exception_ptr& e : errors) {
+            if (e) std::rethrow_exception(e);
         }
     };
-    std::vector<std::thread> pool;
-    for (int k = 1; k < threads; ++k)
-        pool.emplace_back(work, k);
-    work(0);
-    for (std::thread& t : pool)
-        t.join();
-    for (const std::exception_ptr& e : errors) {
-        if (e) std::rethrow_exception(e);
+    const bool adaptive = settings.sampling == PixelSampling::adaptive;
+    if (!detail::supersampled(settings) || adaptive) {
+        // Module 01's pixel loop: one ray through each pixel centre
+        run_pass([&](const Tile& tile, const PixelRadiance& radiance) {
+            modules.render_tile(tile, radiance, view_out);
+        });
+    } else {
+        run_pass([&](const Tile& tile, const PixelRadiance& radiance) {
+            detail::render_tile_sampled(tile, radiance, view_out, settings, modules);
+        });
+    }
+    if (detail::supersampled(settings) && adaptive) {
+        const Image first = image;
+        run_pass([&](const Tile& tile, const PixelRadiance& radiance) {
+            detail::refine_tile(tile, radiance, first, view_out, settings, modules);
+        });
     }
 
     // Sum the counters

@@ -59,6 +59,7 @@ bool load_view(Viewer& v, const std::string& path) {
         const ViewFile file = load_view_file(path);
         v.state.view = file.view;
         v.state.scene.lights = file.lights;
+        file.apply_to(v.state.settings);
         v.state.selected_light = 0;
         v.state.dirty = true;
         v.panel.view_edit = file.view;
@@ -75,7 +76,7 @@ bool load_view(Viewer& v, const std::string& path) {
 
 bool save_view(Viewer& v, const std::string& path) {
     try {
-        save_view_file(path, v.state.view, v.state.scene.lights);
+        save_view_file(path, v.state.view, v.state.scene.lights, &v.state.settings);
         v.log.add("saved view " + path + ": " + view_line(v.state.view));
         return true;
     } catch (const std::exception& e) {
@@ -180,6 +181,7 @@ void submit_if_dirty(Viewer& v) {
     job.settings = s.settings;
     job.modules = s.modules;
     job.compare = s.compare;
+    job.show_samples = s.show_samples;
     job.interactive = s.interacting;
     job.preview_factor =
         s.interacting ? preview_factor(v.frames.last_full.milliseconds) : 1;

@@ -9,6 +9,7 @@
 #include "actions.h"
 #include "panel.h"
 #include "raylab/error.h"
+#include "raylab/input_checks.h"
 
 namespace raylab::viewer {
 
@@ -54,6 +55,65 @@ void resolution(Viewer& v) {
     }
 }
 
+constexpr int kSpp[] = {1, 4, 9, 16, 25, 36, 64, 100, 256};
+constexpr int kLightSamples[] = {1, 2, 4, 8, 16, 32, 64, 128, 256};
+
+// A combo of the values in list; true when the user picked one
+template <size_t N>
+bool value_combo(const char* label, int& value, const int (&list)[N]) {
+    bool picked = false;
+    if (ImGui::BeginCombo(label, std::to_string(value).c_str())) {
+        for (int x : list) {
+            if (ImGui::Selectable(std::to_string(x).c_str(), x == value)) {
+                value = x;
+                picked = true;
+            }
+        }
+        ImGui::EndCombo();
+    }
+    return picked;
+}
+
+// Samples per pixel, scheme, threshold, light size and samples (modules 09 and 10). Each
+// value passes the same rule as on the command line before it is applied
+void sampling(Viewer& v) {
+    RenderSettings& s = v.state.settings;
+    const auto apply = [&](auto check, auto value, auto& field, const char* what) {
+        try {
+            check(value, what);
+            field = value;
+            v.state.dirty = true;
+        } catch (const Error& e) {
+            report_error(v, std::string(e.what()) + ": not applied");
+        }
+    };
+    int spp = s.spp;
+    if (value_combo("samples per pixel", spp, kSpp))
+        apply(check_samples_per_pixel, spp, s.spp, "samples per pixel");
+    const char* schemes[] = {"grid", "stratified", "adaptive"};
+    int scheme = static_cast<int>(s.sampling);
+    if (ImGui::Combo("pixel sampling", &scheme, schemes, 3)) {
+        s.sampling = static_cast<PixelSampling>(scheme);
+        v.state.dirty = true;
+    }
+    float threshold = s.aa_threshold;
+    if (ImGui::SliderFloat("adaptive threshold", &threshold, 0.0f, 1.0f, "%.3f",
+                           ImGuiSliderFlags_Logarithmic))
+        apply(check_aa_threshold, threshold, s.aa_threshold, "adaptive threshold");
+    float size = s.light_size;
+    if (ImGui::SliderFloat("light size (0: point)", &size, 0.0f, 4.0f, "%.2f"))
+        apply(check_light_size, size, s.light_size, "light size");
+    int n = s.light_samples;
+    if (value_combo("light samples", n, kLightSamples))
+        apply(check_light_samples, n, s.light_samples, "light samples");
+    if (ImGui::Checkbox("stratified light samples", &s.light_stratified))
+        v.state.dirty = true;
+    if (ImGui::Checkbox("show samples per pixel (heat map)", &v.state.show_samples))
+        v.state.dirty = true;
+    if (v.state.show_samples)
+        ImGui::TextDisabled("blue: 1 sample, green: about sqrt(N), red: N = %d", s.spp);
+}
+
 void stat_row(const char* name, unsigned long long value) {
     ImGui::TableNextRow();
     ImGui::TableNextColumn();
@@ -81,6 +141,7 @@ void rendering_section(Viewer& v) {
         s.dirty = true;
     if (ImGui::SliderFloat("exposure [EV]", &s.exposure, -6.0f, 6.0f, "%+.1f"))
         s.retone = true;  // tone mapping only: no new render
+    sampling(v);
     int scale = s.image_scale;
     ImGui::RadioButton("fit window", &scale, 0);
     ImGui::SameLine();

@@ -2,6 +2,7 @@
 #include "render_worker.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "raylab/error.h"
 
@@ -23,7 +24,39 @@ bool same_frame(const RenderJob& a, const RenderJob& b) {
            a.ambient == b.ambient && a.view.eye == b.view.eye &&
            a.view.lookat == b.view.lookat && a.view.up == b.view.up &&
            a.view.fov == b.view.fov && s.width == t.width && s.height == t.height &&
-           s.mode == t.mode && s.shadows == t.shadows && s.background == t.background;
+           s.mode == t.mode && s.shadows == t.shadows && s.background == t.background &&
+           s.spp == t.spp && s.sampling == t.sampling &&
+           s.aa_threshold == t.aa_threshold && s.light_size == t.light_size &&
+           s.light_samples == t.light_samples &&
+           s.light_stratified == t.light_stratified && s.seed == t.seed;
+}
+
+// One sample per pixel and per light: the first pass of a sampled frame, and previews
+RenderSettings first_pass(RenderSettings s) {
+    s.spp = 1;
+    s.light_samples = 1;
+    return s;
+}
+
+bool sampled(const RenderSettings& s) {
+    return s.spp > 1 || (s.light_size > 0.0f && s.light_samples > 1);
+}
+
+// The samples each pixel took as colours: dark blue for 1, through green, to red for the
+// most the settings allow (log scale)
+Image heat_map(const std::vector<std::uint16_t>& samples, int width, int height,
+               int most) {
+    Image image(width, height);
+    const float top = std::log2(float(std::max(most, 2)));
+    for (size_t k = 0; k < samples.size() && k < image.pixels.size(); ++k) {
+        const float t =
+            std::clamp(std::log2(float(std::max<int>(samples[k], 1))) / top, 0.0f, 1.0f);
+        const Vec3 blue(0.02f, 0.02f, 0.3f), green(0.05f, 0.6f, 0.1f),
+            red(1.0f, 0.1f, 0.02f);
+        image.pixels[k] = t < 0.5f ? glm::mix(blue, green, 2.0f * t)
+                                   : glm::mix(green, red, 2.0f * t - 1.0f);
+    }
+    return image;
 }
 
 }  // namespace
@@ -106,8 +139,28 @@ RenderResult RenderWorker::render_job(RenderJob& job) {
         settings.width = std::max(1, settings.width / job.preview_factor);
         settings.height = std::max(1, settings.height / job.preview_factor);
         settings.cancel = &cancel_;
-        result.stats = render(scene_, job.view, settings, ModuleTable::make(job.modules),
-                              result.image);
+        const ModuleTable modules = ModuleTable::make(job.modules);
+        if (result.preview) settings = first_pass(settings);
+        if (!result.preview && sampled(settings)) {
+            // Progressive: one sample everywhere first, shown while the rest renders
+            RenderResult early;
+            early.job_id = job.id;
+            early.preview = true;
+            early.stats =
+                render(scene_, job.view, first_pass(settings), modules, early.image);
+            if (early.stats.cancelled) return early;
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                finished_ = std::move(early);
+            }
+            wake_();
+        }
+        std::vector<std::uint16_t> samples;
+        if (job.show_samples) settings.samples_map = &samples;
+        result.stats = render(scene_, job.view, settings, modules, result.image);
+        if (job.show_samples && !result.stats.cancelled)
+            result.image =
+                heat_map(samples, settings.width, settings.height, settings.spp + 1);
         if (job.compare && !result.preview && !result.stats.cancelled)
             render_reference(job, settings, result);
     } catch (const std::exception& e) {

@@ -38,6 +38,7 @@ struct RenderJob {
     int preview_factor = 1;  ///< > 1: a coarse preview, width / factor x height / factor
     bool interactive = false;  ///< a value is being dragged: never cancelled (see above)
     bool compare = false;      ///< also render the full reference and compare (full only)
+    bool show_samples = false;  ///< show the samples each pixel took (heat map)
 };
 
 struct RenderResult {

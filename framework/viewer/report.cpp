@@ -87,6 +87,20 @@ std::string render_command(const ReportInput& in, const std::string& output) {
          std::to_string(in.settings.height);
     c += std::string(" --mode ") + to_string(in.settings.mode) + " --shadows " +
          (in.settings.shadows ? "on" : "off") + " --exposure " + number(in.exposure);
+    // Sampling (modules 09 and 10), only when it differs from one ray per pixel and
+    // point lights
+    const RenderSettings& s = in.settings;
+    if (s.spp > 1) {
+        c += " --spp " + std::to_string(s.spp) + " --aa " + to_string(s.sampling);
+        if (s.sampling == PixelSampling::adaptive)
+            c += " --aa-threshold " + number(s.aa_threshold);
+    }
+    if (s.light_size > 0.0f)
+        c += " --light-size " + number(s.light_size) + " --light-samples " +
+             std::to_string(s.light_samples) + " --light-sampling " +
+             (s.light_stratified ? "stratified" : "uniform");
+    if (s.seed != 1 && (s.spp > 1 || s.light_size > 0.0f))
+        c += " --seed " + std::to_string(s.seed);
     c += " " + module_flags(in.modules) + " --output " + shell_word(output);
     return c;
 }
@@ -104,7 +118,7 @@ void write_report(const std::string& dir, const ReportInput& in) {
     std::error_code error;
     std::filesystem::create_directories(dir, error);
     if (error) throw Error(dir + ": cannot create the report folder: " + error.message());
-    save_view_file(dir + "/view.txt", in.view, in.lights);
+    save_view_file(dir + "/view.txt", in.view, in.lights, &in.settings);
 
     std::string settings = "# raylab viewer report\n";
     settings += "scene: " + in.scene_source + "\n";

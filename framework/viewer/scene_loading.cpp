@@ -101,9 +101,11 @@ void init_viewer(Viewer& v, const Options& options, const ViewerOptions& viewer_
     if (viewer_options.compare && !reference_available())
         throw Error("--compare needs the reference solutions, and this build has none");
     s.compare = viewer_options.compare;
+    s.show_samples = viewer_options.show_samples;
     if (view && builtin) {
         s.view = view->view;
         s.scene.lights = view->lights;
+        view->apply_to(s.settings);
     }
     v.panel.view_edit = s.view;
     v.panel.size_edit[0] = s.settings.width;
@@ -158,6 +160,7 @@ bool finish_loading(Viewer& v) {
         if (status && status->view) {
             v.state.view = status->view->view;
             v.state.scene.lights = status->view->lights;
+            status->view->apply_to(v.state.settings);
             v.panel.view_edit = v.state.view;
         }
         return true;

@@ -49,7 +49,8 @@ std::vector<float> numbers(const std::vector<std::string_view>& words,
 
 }  // namespace
 
-std::string format_view_file(const View& view, const std::vector<PointLight>& lights) {
+std::string format_view_file(const View& view, const std::vector<PointLight>& lights,
+                             const RenderSettings* settings) {
     std::string text = "# raylab view: camera and point lights (docs/viewer.md)\n";
     text += "eye " + triple(view.eye) + "\n";
     text += "lookat " + triple(view.lookat) + "\n";
@@ -58,6 +59,11 @@ std::string format_view_file(const View& view, const std::vector<PointLight>& li
     text += "# light: position x y z, intensity I r g b [W/sr]\n";
     for (const PointLight& light : lights)
         text += "light " + triple(light.p) + "  " + triple(light.I) + "\n";
+    if (settings && settings->light_size > 0.0f) {
+        text += "# area lights (handout 10): side of the square, shadow rays per point\n";
+        text += "light_size " + number(settings->light_size) + "\n";
+        text += "light_samples " + std::to_string(settings->light_samples) + "\n";
+    }
     return text;
 }
 
@@ -83,12 +89,30 @@ ViewFile parse_view_file(const std::string& text, const std::string& source) {
             check_light(file.lights.back(), at + "light");
             continue;
         }
+        if (keyword == "light_size" || keyword == "light_samples") {
+            const bool size = keyword == "light_size";
+            if (size ? file.light_size.has_value() : file.light_samples.has_value())
+                throw Error(at + "'" + std::string(keyword) + "' appears twice");
+            const std::vector<float> x = numbers(words, {size ? "side" : "count"}, at);
+            if (size) {
+                check_light_size(x[0], at + "light_size");
+                file.light_size = x[0];
+            } else {
+                const int n = static_cast<int>(x[0]);
+                if (float(n) != x[0])
+                    throw Error(at + "light_samples: " + number(x[0]) +
+                                " is not a whole number");
+                check_light_samples(n, at + "light_samples");
+                file.light_samples = n;
+            }
+            continue;
+        }
         int k = 0;
         while (k < 4 && keyword != keys[k])
             ++k;
         if (k == 4) {
             throw Error(at + "unknown keyword '" + printable(keyword, 40) +
-                        "' (eye, lookat, up, fov, light)");
+                        "' (eye, lookat, up, fov, light, light_size, light_samples)");
         }
         if (seen[k]) throw Error(at + "'" + keys[k] + "' appears twice");
         seen[k] = true;
@@ -109,10 +133,11 @@ ViewFile parse_view_file(const std::string& text, const std::string& source) {
 }
 
 void save_view_file(const std::string& path, const View& view,
-                    const std::vector<PointLight>& lights) {
+                    const std::vector<PointLight>& lights,
+                    const RenderSettings* settings) {
     check_output_path(path, OutputKind::text, "view file");
     std::ofstream out(path);
-    out << format_view_file(view, lights);
+    out << format_view_file(view, lights, settings);
     if (!out.flush()) throw Error(printable(path) + ": cannot write the view file");
 }
 

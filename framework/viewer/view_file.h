@@ -12,9 +12,11 @@
 // lights replace the scene's (no light line: no lights).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "raylab/renderer.h"
 #include "raylab/scene.h"
 
 namespace raylab::viewer {
@@ -22,6 +24,16 @@ namespace raylab::viewer {
 struct ViewFile {
     View view;
     std::vector<PointLight> lights;
+    /// Optional "light_size S" and "light_samples N" lines (handout 10): each point light
+    /// as a square area light of side S, sampled with N shadow rays.
+    std::optional<float> light_size;
+    std::optional<int> light_samples;
+
+    /// Puts the optional keys that are present into settings.
+    void apply_to(RenderSettings& settings) const {
+        if (light_size) settings.light_size = *light_size;
+        if (light_samples) settings.light_samples = *light_samples;
+    }
 };
 
 /// The text of a view file; floats are written with 9 digits, so they read back exactly.
@@ -31,7 +43,9 @@ std::string format_number(float x);
 /// x, y, z with 9 significant digits each, separated by sep.
 std::string format_vec3(const Vec3& v, const char* sep);
 
-std::string format_view_file(const View& view, const std::vector<PointLight>& lights);
+/// With settings, the area-light keys are written when settings.light_size > 0.
+std::string format_view_file(const View& view, const std::vector<PointLight>& lights,
+                             const RenderSettings* settings = nullptr);
 
 /// Parses the text of a view file. Throws raylab::Error as "SOURCE:LINE: problem" (or
 /// "SOURCE: problem" for a missing line or an invalid camera).
@@ -39,7 +53,8 @@ ViewFile parse_view_file(const std::string& text, const std::string& source);
 
 /// Writes and reads view files. Throw raylab::Error naming the file.
 void save_view_file(const std::string& path, const View& view,
-                    const std::vector<PointLight>& lights);
+                    const std::vector<PointLight>& lights,
+                    const RenderSettings* settings = nullptr);
 ViewFile load_view_file(const std::string& path);
 
 }  // namespace raylab::viewer

@@ -44,6 +44,7 @@ struct ViewerState {
     bool compare = false;         ///< render the reference too and compare
     bool show_difference = true;  ///< with compare: show the heat map, not the image
     bool inspector = true;        ///< tooltip of the pixel under the mouse
+    bool show_samples = false;    ///< show samples per pixel as a heat map
     int image_scale = 0;          ///< window pixels per image pixel; 0: fit
     float ui_scale = 1.0f;        ///< text and widget size (panel, --ui-scale)
     bool dirty = true;            ///< the image is out of date: render again

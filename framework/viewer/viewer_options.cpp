@@ -89,6 +89,9 @@ ViewerOptions parse_viewer_options(const std::vector<std::string>& extra) {
         } else if (flag == "--compare") {
             no_value();
             o.compare = true;
+        } else if (flag == "--show-samples") {
+            no_value();
+            o.show_samples = true;
         } else if (flag == "--run-tests") {
             no_value();
             o.run_tests = true;
@@ -108,6 +111,7 @@ std::string viewer_options_help() {
   --debug-view          open the 3D debug view (scene, pinned pixel's rays)
   --pin I,J             pin pixel (I, J) in the inspector (shadow rays, debug view)
   --compare             start with the difference to the reference shown
+  --show-samples        start with the samples per pixel shown as a heat map
   --run-tests           run the graders of every module at start
   --load-view FILE      camera and lights from a view file (see docs/viewer.md)
 Scripted runs (CI):

@@ -24,7 +24,8 @@ struct ViewerOptions {
     float ui_scale = 1.0f;  ///< --ui-scale F: text and widget size (projectors, high DPI)
     int image_scale = 0;    ///< --image-scale S: window pixels per image pixel; 0 fits
     bool compare = false;   ///< --compare: start with the difference to the reference
-    bool run_tests = false;  ///< --run-tests: run the graders at start
+    bool show_samples = false;  ///< --show-samples: the samples-per-pixel heat map
+    bool run_tests = false;     ///< --run-tests: run the graders at start
 };
 
 /// Parses the flags parse_options left in Options::extra. Throws raylab::Error naming the

@@ -28,8 +28,8 @@ TEST_SUITE("modules") {
         CHECK(s[Module::point_light] == Impl::student);
         CHECK(s[Module::sphere] == Impl::reference);
         CHECK(describe(s) ==
-              "reference: pixel-loop,plane,sphere,triangle,lambert,shadows; student: "
-              "camera,point-light");
+              "reference: pixel-loop,plane,sphere,triangle,lambert,shadows,antialiasing,"
+              "area-light; student: camera,point-light");
     }
 
     TEST_CASE("an unknown module name is an error that lists the valid names") {

@@ -87,6 +87,17 @@ void poison(std::optional<Hit>& hit) {
     hit->t = kNaN;
     hit->position = hit->n = Vec3(kNaN);
 }
+void poison(PixelSample& p) {
+    p.offset = Vec2(kNaN);
+    p.weight = kNaN;
+}
+// Lists of results: every element poisoned, and an empty list gets one
+template <class T>
+void poison(std::vector<T>& list) {
+    if (list.empty()) list.resize(1);
+    for (T& x : list)
+        poison(x);
+}
 
 // ---- Stub detection -------------------------------------------------------------------
 

@@ -52,6 +52,28 @@ TEST_SUITE("viewer") {
         CHECK(file.lights[1].I == lights[1].I);
     }
 
+    TEST_CASE("a view file carries the area-light size and samples when they are set") {
+        // Point lights (size 0) write no area-light lines; a size of 0.4 with 16 samples
+        // reads back, and the values pass the same rules as --light-size/--light-samples
+        const View view{Vec3(0, 0, 3), Vec3(0.0f), Vec3(0, 1, 0), 50.0f};
+        RenderSettings settings;
+        CHECK(
+            !parse_view_file(format_view_file(view, {}, &settings), "v.txt").light_size);
+        settings.light_size = 0.4f;
+        settings.light_samples = 16;
+        const ViewFile file =
+            parse_view_file(format_view_file(view, {}, &settings), "v.txt");
+        REQUIRE(file.light_size);
+        REQUIRE(file.light_samples);
+        CHECK(*file.light_size == 0.4f);
+        CHECK(*file.light_samples == 16);
+        CHECK(view_error(kGoodView + "light_samples 0\n") ==
+              "v.txt:5: light_samples: 0 light samples is outside 1..1024");
+        CHECK(
+            view_error(kGoodView + "light_size -1\n") ==
+            "v.txt:5: light_size: light size -1 is outside [0, 1000] (0: point lights)");
+    }
+
     TEST_CASE("a malformed view file is rejected with a message naming the line") {
         CHECK(view_error(kGoodView) == "");
         CHECK(view_error("# comment\neye 0 0\nlookat 0 0 0\nup 0 1 0\nfov 50\n") ==
@@ -61,7 +83,8 @@ TEST_SUITE("viewer") {
         CHECK(view_error("eye 0 0 3\nlookat 0 inf 0\n") ==
               "v.txt:2: y: 'inf' is not a finite number");
         CHECK(view_error(kGoodView + "zoom 2\n") ==
-              "v.txt:5: unknown keyword 'zoom' (eye, lookat, up, fov, light)");
+              "v.txt:5: unknown keyword 'zoom' (eye, lookat, up, fov, light, light_size, "
+              "light_samples)");
         CHECK(view_error(kGoodView + "fov 40\n") == "v.txt:5: 'fov' appears twice");
         CHECK(view_error(kGoodView + "light 0 1 0  1 -1 1\n") ==
               "v.txt:5: light: intensity (1, -1, 1) must not be negative");

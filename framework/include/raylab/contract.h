@@ -122,6 +122,51 @@ class Occluder {
 };
 
 // ---------------------------------------------------------------------------------------
+// Sampling (handouts 09, 10)
+
+/// The framework's seeded random generator (splitmix64). The renderer seeds one per
+/// pixel, sample and light from the render's seed, so an image is the same on every run
+/// and for any number of threads. Pass it by value and draw with uniform().
+struct PixelRng {
+    std::uint64_t state = 0;
+
+    /// The generator for the numbers a, b, c (say a pixel's column, row and a stream).
+    static PixelRng make(std::uint64_t seed, std::uint64_t a, std::uint64_t b,
+                         std::uint64_t c) {
+        PixelRng rng{seed ^ 0x9E3779B97F4A7C15ull};
+        for (std::uint64_t x : {a, b, c})
+            rng.state = rng.next() ^ x;
+        (void)rng.next();
+        return rng;
+    }
+    /// The next 64 random bits.
+    std::uint64_t next() {
+        std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    }
+    /// Uniform in [0, 1): 24 random bits, so the result is never 1.
+    float uniform() { return static_cast<float>(next() >> 40) * 0x1p-24f; }
+};
+
+/// One sample of a pixel (handout 09 §1): where it lies inside the pixel and how much it
+/// counts.
+struct PixelSample {
+    Vec2 offset;   ///< (0, 0) the pixel's top-left corner, (1, 1) its bottom-right
+    float weight;  ///< w_k in L = sum_k w_k L_k; a pixel's weights sum to 1
+};
+
+/// A rectangular area light (handout 10 §1): the points p + s e1 + t e2, s, t in [0, 1],
+/// emitting radiance Le on the side of n = (e1 x e2) / |e1 x e2| only.
+struct AreaLight {
+    Vec3 p;   ///< corner p
+    Vec3 e1;  ///< first edge e1
+    Vec3 e2;  ///< second edge e2 (perpendicular to e1)
+    Vec3 Le;  ///< emitted radiance Le per RGB channel [W/(m^2 sr)]
+};
+
+// ---------------------------------------------------------------------------------------
 // Stubs (STYLE.md rule 10): a stub calls RAYLAB_STUB("NN_name") so that the grader and
 // the viewer can say "not started" instead of reporting every failing case.
 

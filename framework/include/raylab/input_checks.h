@@ -17,6 +17,9 @@ constexpr float kMaxCoordinate = 1.0e6f;  ///< |x| of eye, look-at, up, light, v
 constexpr float kMaxIntensity = 1.0e6f;   ///< W/sr per channel
 constexpr float kMaxAmbient = 100.0f;     ///< times rho
 constexpr float kMaxExposure = 40.0f;     ///< |EV|
+constexpr int kMaxSamplesPerSide = 32;    ///< samples per pixel at most 32^2
+constexpr int kMaxLightSamples = 1024;    ///< shadow rays per area light and point
+constexpr float kMaxLightSize = 1.0e3f;   ///< side of an area light
 
 void check_fov(float fov, const std::string& what);
 /// A point (eye, look-at, light position): finite, every |coordinate| <= kMaxCoordinate.
@@ -26,6 +29,14 @@ void check_intensity(const Vec3& I, const std::string& what);
 void check_ambient(float ambient, const std::string& what);
 void check_exposure(float ev, const std::string& what);
 /// eye, look-at and up within kMaxCoordinate, the fov rule, then validate(view).
+/// Samples per pixel: a square n^2 with 1 <= n <= kMaxSamplesPerSide.
+void check_samples_per_pixel(int spp, const std::string& what);
+/// Adaptive threshold: a contrast, finite and in [0, 1].
+void check_aa_threshold(float threshold, const std::string& what);
+/// Area light side: finite, in [0, kMaxLightSize]; 0 keeps point lights.
+void check_light_size(float size, const std::string& what);
+/// Light samples: 1 .. kMaxLightSamples.
+void check_light_samples(int n, const std::string& what);
 void check_view(const View& view, const std::string& what);
 void check_light(const PointLight& light, const std::string& what);
 

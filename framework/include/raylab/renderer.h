@@ -30,6 +30,16 @@ enum class ShadingMode {
 const char* to_string(ShadingMode mode);
 ShadingMode parse_shading_mode(const std::string& word);
 
+/// How the samples of a pixel are placed (module 09): the cells' centres, one at random
+/// in each cell, or one centre sample everywhere and stratified samples where the
+/// neighbourhood disagrees.
+enum class PixelSampling { grid, stratified, adaptive };
+
+/// "grid", "stratified", "adaptive"; parse_pixel_sampling throws raylab::Error
+/// otherwise.
+const char* to_string(PixelSampling sampling);
+PixelSampling parse_pixel_sampling(const std::string& word);
+
 /// Largest accepted image side and pixel count (about 64 megapixels: 768 MiB of float
 /// RGB).
 inline constexpr int kMaxImageSide = 16384;
@@ -44,6 +54,19 @@ struct RenderSettings {
     Vec3 background{0.0f};
     /// When set and it turns true, render() stops after the tiles in flight (viewer).
     const std::atomic<bool>* cancel = nullptr;
+
+    // Sampling (modules 09 and 10). The defaults are one ray through each pixel centre
+    // and point lights: the renderer of modules 01-08, bit for bit.
+    int spp = 1;  ///< samples per pixel n^2 (adaptive: in the pixels it refines)
+    PixelSampling sampling = PixelSampling::stratified;  ///< used when spp > 1
+    float aa_threshold = 0.1f;  ///< adaptive: refine where the contrast exceeds this
+    float light_size = 0.0f;  ///< side of the square area light per point light; 0: none
+    int light_samples = 1;    ///< shadow rays per area light and shading point
+    bool light_stratified = true;  ///< stratified (true) or uniform light samples
+    std::uint64_t seed = 1;        ///< seeds every PixelRng of the frame
+    /// When set: resized to width * height and filled with the camera samples each pixel
+    /// took (the viewer's heat map).
+    std::vector<std::uint16_t>* samples_map = nullptr;
 };
 
 /// Checks sizes and thread count; throws raylab::Error naming the problem.
@@ -69,6 +92,11 @@ struct FrameStats {
                                   : 0.0;
     }
 };
+
+/// The square area light of side size that stands in for light (handout 10 §4): centred
+/// on light.p, facing target (down when target is light.p), with Le = I / A so that its
+/// intensity along the normal is the point light's I.
+AreaLight area_light_for(const PointLight& light, float size, const Vec3& target);
 
 /// The pinhole camera of view for a width x height image, built with the camera module.
 PinholeCamera make_camera(const ModuleTable& modules, const View& view);
