@@ -128,22 +128,7 @@ class PixelShader {
                 area_light(hit, light, k);
                 continue;
             }
-            const LightSample sample = modules_.sample_point_light(light, hit.position);
-            // Light behind the surface: no contribution, no shadow ray
-            if (!(glm::dot(hit.ns, sample.wi) > 0.0f)) {
-                ++counters_.backfacing;
-                continue;
-            }
-            if (!settings_.shadows) {
-                ++counters_.disabled;
-            } else {
-                const std::uint64_t before = occluder_.shadow_rays;
-                const bool blocked =
-                    modules_.in_shadow(occluder_, hit.position, hit.ns, sample);
-                counters_.shadow_rays += occluder_.shadow_rays - before;
-                if (blocked) continue;
-            }
-            visible_.push_back(sample);
+            add_if_visible(hit, modules_.sample_point_light(light, hit.position));
         }
         return modules_.lambert(material.rho, material.Le, hit.ns, visible_) +
                scene_.ambient * material.rho;
@@ -156,24 +141,27 @@ class PixelShader {
         const int N = settings_.light_samples;
         xi_ = modules_.light_sample_points(N, settings_.light_stratified,
                                            detail::light_rng(settings_, uv_, k));
-        for (const Vec2& xi : xi_) {
-            const LightSample sample =
-                modules_.sample_area_light(area, hit.position, xi, N);
-            if (!(glm::dot(hit.ns, sample.wi) > 0.0f)) {
-                ++counters_.backfacing;
-                continue;
-            }
-            if (!settings_.shadows) {
-                ++counters_.disabled;
-            } else {
-                const std::uint64_t before = occluder_.shadow_rays;
-                const bool blocked =
-                    modules_.in_shadow(occluder_, hit.position, hit.ns, sample);
-                counters_.shadow_rays += occluder_.shadow_rays - before;
-                if (blocked) continue;
-            }
-            visible_.push_back(sample);
+        for (const Vec2& xi : xi_)
+            add_if_visible(hit, modules_.sample_area_light(area, hit.position, xi, N));
+    }
+
+    // One light sample, point or area: a light behind the surface contributes nothing
+    // and costs no shadow ray; with shadows on, the shadow module decides
+    void add_if_visible(const Hit& hit, const LightSample& sample) {
+        if (!(glm::dot(hit.ns, sample.wi) > 0.0f)) {
+            ++counters_.backfacing;
+            return;
         }
+        if (!settings_.shadows) {
+            ++counters_.disabled;
+        } else {
+            const std::uint64_t before = occluder_.shadow_rays;
+            const bool blocked =
+                modules_.in_shadow(occluder_, hit.position, hit.ns, sample);
+            counters_.shadow_rays += occluder_.shadow_rays - before;
+            if (blocked) return;
+        }
+        visible_.push_back(sample);
     }
 
     const Scene& scene_;
