@@ -11,12 +11,12 @@ namespace raylab::bench {
 /// of about 30 s.
 struct BenchOptions {
     bool help = false;
-    bool kernels = true;        ///< section 1: kernels, run time against error
-    bool scenes = true;         ///< section 2: raylab against Embree on the same rays
-    bool render = true;         ///< section 3: render() and the work it skips
-    bool scaling = true;        ///< section 4: build, memory and time against size
-    bool sampling = true;       ///< section 5: sampling schemes, time against error
-    int sampling_width = 240;   ///< image size of section 5 (quick: 160 x 120)
+    bool kernels = true;       ///< section 1: kernels, run time against error
+    bool scenes = true;        ///< section 2: raylab against Embree on the same rays
+    bool render = true;        ///< section 3: render() and the work it skips
+    bool scaling = true;       ///< section 4: build, memory and time against size
+    bool sampling = true;      ///< section 5: sampling schemes, time against error
+    int sampling_width = 240;  ///< image size of section 5 (quick: 160 x 120)
     int sampling_height = 180;
     std::string out_dir = ".";  ///< where section 5 writes sampling.csv and .svg
     bool quick = false;         ///< fewer rays, repeats and triangles
