@@ -34,4 +34,9 @@ void refine_tile(const Tile& tile, const PixelRadiance& radiance, const Image& f
                  const ImageView& out, const RenderSettings& settings,
                  const ModuleTable& modules);
 
+/// Each light of probe's hit as the renderer's direct_light sees it (probe.cpp): the
+/// sample or, for area lights, the N samples, the backfacing skip and the shadow tests.
+void probe_lights(const Scene& scene, const RenderSettings& settings,
+                  const ModuleTable& modules, PixelProbe& probe);
+
 }  // namespace raylab::detail

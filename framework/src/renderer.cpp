@@ -287,68 +287,6 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
     return stats;
 }
 
-namespace {
-
-// The scene's any-hit query, recording each ray the shadow module asks about
-class RecordingOccluder : public Occluder {
-  public:
-    RecordingOccluder(const Scene& scene, const ModuleTable& modules,
-                      std::vector<Ray>& rays)
-        : scene_(scene), modules_(modules), rays_(rays) {}
-    bool occluded(const Ray& r) const override {
-        rays_.push_back(r);
-        return scene_.any_hit(modules_, r, counters_);
-    }
-
-  private:
-    const Scene& scene_;
-    const ModuleTable& modules_;
-    std::vector<Ray>& rays_;
-    mutable TraceCounters counters_;
-};
-
-// Names the closest primitive on r by testing every one (a probe, not a frame: the
-// linear scan costs a millisecond on large meshes and needs no primitive ids in Hit)
-void name_blocker(const Scene& scene, const ModuleTable& modules, const Ray& r,
-                  LightProbe& out) {
-    const auto keep = [&](const std::optional<Hit>& h, const char* kind, size_t k) {
-        if (!h || !(h->t >= r.tmin && h->t <= r.tmax)) return;
-        if (out.blocker && !(h->t < out.blocker->t)) return;
-        out.blocker = h;
-        out.blocker_name = std::string(kind) + " " + std::to_string(k);
-    };
-    for (size_t k = 0; k < scene.planes.size(); ++k)
-        keep(modules.intersect_plane(r, scene.planes[k].plane), "plane", k);
-    for (size_t k = 0; k < scene.spheres.size(); ++k)
-        keep(modules.intersect_sphere(r, scene.spheres[k].sphere), "sphere", k);
-    for (size_t k = 0; k < scene.triangles.size(); ++k) {
-        const SceneTriangle& tri = scene.triangles[k];
-        keep(modules.intersect_triangle(r, tri.v0, tri.v1, tri.v2), "triangle", k);
-    }
-}
-
-// Each light as direct_light sees it: sample, the backfacing skip, the shadow test
-void probe_lights(const Scene& scene, const RenderSettings& settings,
-                  const ModuleTable& modules, PixelProbe& probe) {
-    if (settings.mode != ShadingMode::lambert || !probe.hit) return;
-    const Hit& hit = *probe.hit;
-    for (size_t k = 0; k < scene.lights.size(); ++k) {
-        LightProbe lp;
-        lp.light = int(k);
-        lp.sample = modules.sample_point_light(scene.lights[k], hit.position);
-        lp.backfacing = !(glm::dot(hit.ns, lp.sample.wi) > 0.0f);
-        if (!lp.backfacing && settings.shadows) {
-            RecordingOccluder occluder(scene, modules, lp.rays);
-            lp.tested = true;
-            lp.blocked = modules.in_shadow(occluder, hit.position, hit.ns, lp.sample);
-            if (!lp.rays.empty()) name_blocker(scene, modules, lp.rays.front(), lp);
-        }
-        probe.lights.push_back(std::move(lp));
-    }
-}
-
-}  // namespace
-
 PixelProbe probe_pixel(const Scene& scene, const View& view,
                        const RenderSettings& settings, const ModuleTable& modules, int i,
                        int j) {
@@ -363,7 +301,7 @@ PixelProbe probe_pixel(const Scene& scene, const View& view,
     PixelProbe probe;
     probe.uv = modules.image_plane_point(i, j, settings.width, settings.height);
     probe.L = shader.radiance(probe.uv, &probe.hit, &probe.ray);
-    probe_lights(scene, settings, modules, probe);
+    detail::probe_lights(scene, settings, modules, probe);
     return probe;
 }
 

@@ -142,7 +142,16 @@ void log_pinned_lights(Viewer& v) {
                           : lp.blocked ? "shadow"
                                        : "lit",
                           lp.blocker ? ", blocked by " : "", lp.blocker_name.c_str());
-            v.log.add(line);
+            std::string text = line;
+            if (lp.area) {  // area light: the sample counts; the blocker is the first's
+                std::snprintf(
+                    line, sizeof line,
+                    " (area light: %d samples, %d behind, %d blocked, %d visible)",
+                    lp.samples, lp.backfacing_samples, lp.blocked_samples,
+                    lp.visible_samples);
+                text += line;
+            }
+            v.log.add(text);
         }
     };
     add(*pin.probe, "yours");

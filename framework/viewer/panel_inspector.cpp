@@ -14,8 +14,29 @@ namespace {
 const ImVec4 kRed(1.0f, 0.45f, 0.4f, 1.0f);
 const ImVec4 kGreen(0.5f, 0.9f, 0.5f, 1.0f);
 
+// Percentage of an area light's samples that reach the point
+double visible_percent(const LightProbe& lp) {
+    return lp.samples > 0 ? 100.0 * lp.visible_samples / lp.samples : 0.0;
+}
+
+// An area light's counts; then the cell shows its first blocked (or first) sample
+bool area_lines(const LightProbe& lp) {
+    ImGui::Text("area light: %d samples", lp.samples);
+    if (lp.samples == 0) {
+        ImGui::TextColored(kRed, "light_sample_points gave no point");
+        return false;
+    }
+    ImGui::Text("behind %d  blocked %d  visible %d (%.0f%%)", lp.backfacing_samples,
+                lp.blocked_samples, lp.visible_samples, visible_percent(lp));
+    ImGui::Text("Li of the visible %.3g", lp.Li_visible.x);
+    if (lp.backfacing || !lp.tested) return true;
+    ImGui::TextDisabled(lp.blocked ? "first blocked sample:" : "first sample tested:");
+    return true;
+}
+
 // One cell: what one side's code did with one light
 void light_cell(const LightProbe& lp) {
+    if (lp.area && !area_lines(lp)) return;
     const LightSample& s = lp.sample;
     ImGui::Text("wi (%.3f, %.3f, %.3f)", s.wi.x, s.wi.y, s.wi.z);
     ImGui::Text("r %.4f  Li %.3g", s.r, s.Li.x);
@@ -56,7 +77,13 @@ const LightProbe* find_light(const std::optional<PixelProbe>& p, int k) {
 void light_summary(const PixelProbe& p, const char* who) {
     for (const LightProbe& lp : p.lights) {
         if (!lp.tested) continue;
-        if (lp.blocker) {
+        if (lp.area) {
+            ImGui::TextColored(lp.blocked ? kRed : kGreen,
+                               "%s light %d: %.0f%% visible, %d of %d blocked%s%s", who,
+                               lp.light + 1, visible_percent(lp), lp.blocked_samples,
+                               lp.samples, lp.blocker ? ", first by " : "",
+                               lp.blocker ? lp.blocker_name.c_str() : "");
+        } else if (lp.blocker) {
             ImGui::TextColored(lp.blocked ? kRed : kGreen,
                                "%s light %d: %s, %s at t %.4g", who, lp.light + 1,
                                lp.blocked ? "shadow" : "lit", lp.blocker_name.c_str(),

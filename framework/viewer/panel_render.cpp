@@ -139,8 +139,12 @@ void rendering_section(Viewer& v) {
     ImGui::SetNextItemWidth(120.0f);
     if (ImGui::SliderInt("threads (0: all)", &s.settings.threads, 0, cores))
         s.dirty = true;
-    if (ImGui::SliderFloat("exposure [EV]", &s.exposure, -6.0f, 6.0f, "%+.1f"))
+    // The value beside the slider, not on it: a slider centred on 0 has its knob in the
+    // middle, where ImGui draws the value text
+    if (ImGui::SliderFloat("##exposure", &s.exposure, -6.0f, 6.0f, ""))
         s.retone = true;  // tone mapping only: no new render
+    ImGui::SameLine(0.0f, ImGui::GetStyle().ItemInnerSpacing.x);
+    ImGui::Text("exposure %+.1f EV", double(s.exposure));
     sampling(v);
     int scale = s.image_scale;
     ImGui::RadioButton("fit window", &scale, 0);

@@ -334,3 +334,65 @@ TEST_SUITE("viewer") {
 #endif
     }
 }
+
+TEST_SUITE("viewer") {
+    TEST_CASE("with area lights the probe counts each light's samples as the renderer") {
+#if RAYLAB_HAVE_REFERENCE
+        const Scene box = load_scene("cornell");
+        RenderSettings settings;
+        settings.width = 320;
+        settings.height = 240;
+        settings.light_size = 0.4f;
+        settings.light_samples = 16;
+        const ModuleTable ref = ModuleTable::make(ModuleSelection::all(Impl::reference));
+        Image image;
+        render(box, box.view, settings, ref, image);
+        // Along row 225 (the floor through the short block's shadow): lit, penumbra,
+        // umbra
+        int lit = 0, penumbra = 0, umbra = 0;
+        for (int i = 200; i < 280; ++i) {
+            INFO("pixel (" << i << ", 225)");
+            const PixelProbe p = probe_pixel(box, box.view, settings, ref, i, 225);
+            REQUIRE(p.hit);
+            CHECK(p.L == image.at(i, 225));  // the probe traces what the renderer did
+            REQUIRE(p.lights.size() == 1);
+            const LightProbe& lp = p.lights[0];
+            CHECK(lp.area);
+            CHECK(lp.samples == 16);
+            CHECK(lp.tested);
+            CHECK(lp.backfacing_samples + lp.blocked_samples + lp.visible_samples == 16);
+            CHECK(lp.blocked == (lp.blocked_samples > 0));
+            // No visible sample: only the ambient term (0 here) is left
+            CHECK((lp.visible_samples == 0) == (p.L == Vec3(0.0f)));
+            if (lp.visible_samples == 0) CHECK(lp.Li_visible == Vec3(0.0f));
+            if (lp.visible_samples > 0) CHECK(lp.Li_visible.x > 0.0f);
+            if (lp.blocked) {
+                // The sample shown is a blocked one: its ray meets the named blocker
+                REQUIRE(lp.rays.size() >= 1);
+                REQUIRE(lp.blocker);
+                CHECK(lp.blocker_name.rfind("triangle ", 0) == 0);
+                CHECK(lp.blocker->t < lp.rays[0].tmax);
+                CHECK(glm::dot(lp.rays[0].w, lp.sample.wi) > 0.999f);
+            }
+            lit += lp.blocked_samples == 0;
+            umbra += lp.visible_samples == 0;
+            penumbra += lp.blocked_samples > 0 && lp.visible_samples > 0;
+        }
+        CHECK(lit > 0);
+        CHECK(penumbra > 0);
+        CHECK(umbra > 0);
+        // The student's stub of module 10 gives no point: an area light of 0 samples
+        ModuleSelection stub = ModuleSelection::all(Impl::reference);
+        stub[Module::area_light] = Impl::student;
+        const PixelProbe s =
+            probe_pixel(box, box.view, settings, ModuleTable::make(stub), 240, 225);
+        REQUIRE(s.lights.size() == 1);
+        CHECK(s.lights[0].area);
+        CHECK(s.lights[0].samples == 0);
+        CHECK(s.lights[0].visible_samples == 0);
+        // Point lights (size 0) keep the point-light probe
+        settings.light_size = 0.0f;
+        CHECK_FALSE(probe_pixel(box, box.view, settings, ref, 240, 225).lights[0].area);
+#endif
+    }
+}

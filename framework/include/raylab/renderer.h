@@ -117,6 +117,16 @@ struct LightProbe {
     std::vector<Ray> rays;       ///< the rays in_shadow asked the scene about
     std::optional<Hit> blocker;  ///< closest hit on the first ray: what blocks it
     std::string blocker_name;    ///< e.g. "triangle 12" (empty: nothing on the ray)
+    // An area light (light_size > 0): its N samples as the renderer draws them for this
+    // camera sample. sample, rays and blocker are then those of the first blocked sample
+    // (none blocked: of the first tested one), blocked says whether any was blocked, and
+    // backfacing whether all were behind the surface.
+    bool area = false;           ///< an area light
+    int samples = 0;             ///< the points light_sample_points gave (N if right)
+    int backfacing_samples = 0;  ///< behind the surface: no shadow ray
+    int blocked_samples = 0;     ///< in_shadow said blocked
+    int visible_samples = 0;     ///< passed to lambert; visible fraction = visible / N
+    Vec3 Li_visible{0.0f};       ///< the sum of the visible samples' Li
 };
 
 /// Everything about one pixel, for the viewer's inspector and for debugging.
