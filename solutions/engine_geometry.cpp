@@ -143,11 +143,12 @@ inline float triangle_t(const Ray& r, const WoopRay& q, const Scene::Slot& tri,
     return t;
 }
 
-// t of the primitive in slot k, or NaN
+// t of the primitive in slot k, or NaN (a scene without spheres skips the load of the
+// slot's primitive index)
 inline float slot_t(const Scene& scene, const Ray& r, const WoopRay& q, std::uint32_t k,
                     float tmax, TriangleExtra& extra) {
     const Scene::Slot& slot = scene.slots()[k];
-    if (scene.bvh().prims()[k] < scene.spheres.size())
+    if (!scene.spheres.empty() && scene.bvh().prims()[k] < scene.spheres.size())
         return sphere_t(r, slot.a, slot.b.x, tmax);
     return triangle_t(r, q, slot, tmax, extra);
 }
