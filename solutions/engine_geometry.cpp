@@ -86,14 +86,20 @@ struct WoopRay {
     }
 };
 
-// What intersect_triangle's Hit holds besides t and position
+// What intersect_triangle's Hit holds besides t, position and normal
 struct TriangleExtra {
-    Vec3 n;
     Vec2 uv;
 };
 
-// intersect_triangle's t, or NaN: the same operations in the same order; on a hit, its
-// normal and uv in extra
+// intersect_triangle's normal (the same expressions)
+inline Vec3 triangle_normal(const Scene::Slot& tri) {
+    const DVec3 N = glm::cross(DVec3(tri.b) - DVec3(tri.a), DVec3(tri.c) - DVec3(tri.a));
+    const double len = glm::length(N);
+    return Vec3(N / len);
+}
+
+// intersect_triangle's t, or NaN: the same operations (and the same decisions); on a
+// hit, its uv in extra
 inline float triangle_t(const Ray& r, const WoopRay& q, const Scene::Slot& tri,
                         float tmax, TriangleExtra& extra) {
     if (!q.valid) return NAN;
@@ -111,6 +117,10 @@ inline float triangle_t(const Ray& r, const WoopRay& q, const Scene::Slot& tri,
     const double t_scaled = e0 * z0 + e1 * z1 + e2 * z2;
     const double inv_det = 1.0 / det;
     const double td = t_scaled * inv_det;
+    // The module's last two tests, t's range and then t > 0, in the other order: a
+    // candidate behind the nearest hit so far is refused before the bound
+    const float t = static_cast<float>(td);
+    if (!(t >= r.tmin && t <= tmax)) return NAN;
     // pbrt-v4 §6.8.7's conservative t > 0, with double's gamma
     constexpr double u = 0.5 * std::numeric_limits<double>::epsilon();
     const auto gamma = [](int n) { return n * u / (1 - n * u); };
@@ -124,22 +134,21 @@ inline float triangle_t(const Ray& r, const WoopRay& q, const Scene::Slot& tri,
     const double dt =
         3 * (gamma(3) * max_e * max_z + de * max_z + dz * max_e) * std::abs(inv_det);
     if (!(td > dt)) return NAN;
-    const float t = static_cast<float>(td);
-    if (!(t >= r.tmin && t <= tmax)) return NAN;
-    // The module also refuses a triangle whose normal has no length
+    // The module also refuses a triangle whose normal has no length: len = sqrt(N . N)
+    // is > 0 exactly when N . N is (NaN fails both); the nearest hit's normal is
+    // computed once, by triangle_normal
     const DVec3 N = glm::cross(DVec3(tri.b) - DVec3(tri.a), DVec3(tri.c) - DVec3(tri.a));
-    const double len = glm::length(N);
-    if (!(len > 0.0)) return NAN;
-    extra.n = Vec3(N / len);
+    if (!(glm::dot(N, N) > 0.0)) return NAN;
     extra.uv = Vec2(static_cast<float>(e1 * inv_det), static_cast<float>(e2 * inv_det));
     return t;
 }
 
-// t of the primitive in slot k, or NaN
+// t of the primitive in slot k, or NaN (a scene without spheres skips the load of the
+// slot's primitive index)
 inline float slot_t(const Scene& scene, const Ray& r, const WoopRay& q, std::uint32_t k,
                     float tmax, TriangleExtra& extra) {
     const Scene::Slot& slot = scene.slots()[k];
-    if (scene.bvh().prims()[k] < scene.spheres.size())
+    if (!scene.spheres.empty() && scene.bvh().prims()[k] < scene.spheres.size())
         return sphere_t(r, slot.a, slot.b.x, tmax);
     return triangle_t(r, q, slot, tmax, extra);
 }
@@ -195,7 +204,7 @@ PrimRef closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, H
         hit.n = (hit.position - sphere.c) / sphere.r;
         return {PrimRef::Kind::sphere, p};
     }
-    hit.n = best_extra.n;
+    hit.n = triangle_normal(scene.slots()[best_slot]);
     hit.uv = best_extra.uv;
     return {PrimRef::Kind::triangle, p - sphere_count};
 }
