@@ -2,7 +2,8 @@
 # Checks every relative link and image in the Markdown files under DIR: the file (or
 # folder) it names must exist. Links to the web (http:, https:, mailto:) and anchors
 # within a page (#...) are not followed. scripts/release/ holds templates whose links are
-# relative to the release's root: they are checked in the release, where they land.
+# relative to the release's root: they are checked in the release, where they land; likewise
+# bench/doc/ holds the head and tail of docs/benchmarks.md (bench/make-doc.sh).
 #
 # Usage: scripts/check-links.sh DIR
 # Prints one line per broken link (file:line: target) and exits 1 when there is any.
@@ -11,7 +12,7 @@ dir=${1:?usage: scripts/check-links.sh DIR}
 cd "$dir"
 broken=0 checked=0 files=0
 markdown() {
-    find . \( -name 'build*' -o -path ./scripts/release \) -prune -o -name '*.md' -print |
+    find . \( -name 'build*' -o -path ./scripts/release -o -path ./bench/doc \) -prune -o -name '*.md' -print |
         sed 's|^\./||' | sort
 }
 while IFS= read -r md; do
