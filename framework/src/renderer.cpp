@@ -91,7 +91,7 @@ class PixelShader {
 
     Vec3 radiance(const Vec2& uv, std::optional<Hit>* hit_out = nullptr,
                   Ray* ray_out = nullptr) {
-        // Camera ray; the framework boundary normalises w (STYLE.md rule 9)
+        // Camera ray; the framework boundary normalises w (docs/style.md rule 9)
         Ray ray = modules_.camera_ray(camera_, uv);
         const float len = glm::length(ray.w);
         if (!(len > 0.0f) || !std::isfinite(len) || !is_finite(ray.o))

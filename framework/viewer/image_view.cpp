@@ -73,7 +73,7 @@ void track_mouse(Viewer& v, const ImageRect& r) {
 }
 
 // A stub renders black or nothing: say so on the image instead of leaving a student
-// with a black picture (STYLE.md anti-pattern 2)
+// with a black picture (docs/style.md anti-pattern 2)
 void stub_note(const Viewer& v, const ImageRect& r) {
     std::string names;
     for (const ModuleInfo& info : module_infos()) {

@@ -1,6 +1,6 @@
 // viewer/viewer.h: the viewer's state, one plain struct of plain parts.
 //
-// STYLE.md rule 13: the panel edits ViewerState, the renderer reads it, and a widget
+// docs/style.md rule 13: the panel edits ViewerState, the renderer reads it, and a widget
 // that returns true marks it dirty. The main loop (app.cpp) draws the panel
 // (panel_*.cpp), handles keys and the mouse (input.cpp), shows the image
 // (image_view.cpp) and sends a job to the background renderer when something changed

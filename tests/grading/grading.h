@@ -26,7 +26,7 @@
 namespace raylab::grading {
 
 // ---------------------------------------------------------------------------------------
-// Tolerances, one per quantity (STYLE.md rule 11). They are loose enough for float,
+// Tolerances, one per quantity (docs/style.md rule 11). They are loose enough for float,
 // double, Cramer's rule, Moeller-Trumbore, the geometric sphere test and any reasonable
 // epsilon, and tight enough that every real mistake is far outside them.
 namespace tol {

@@ -167,8 +167,8 @@ struct AreaLight {
 };
 
 // ---------------------------------------------------------------------------------------
-// Stubs (STYLE.md rule 10): a stub calls RAYLAB_STUB("NN_name") so that the grader and
-// the viewer can say "not started" instead of reporting every failing case.
+// Stubs (docs/style.md rule 10): a stub calls RAYLAB_STUB("NN_name") so that the grader
+// and the viewer can say "not started" instead of reporting every failing case.
 
 namespace stub {
 /// Bit k set: module k+1 ran its stub since the last reset.

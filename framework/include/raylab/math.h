@@ -1,5 +1,5 @@
 // raylab/math.h: the one math header. GLM types under short names, and the few helpers
-// the handouts name. Students never write a vector class (STYLE.md rule 6).
+// the handouts name. Students never write a vector class (docs/style.md rule 6).
 #pragma once
 
 #include <algorithm>

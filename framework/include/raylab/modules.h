@@ -27,7 +27,7 @@ inline constexpr int kModuleCount = 0
 #include "raylab/modules.def"
     ;
 
-/// Names of one module, all derived from its stable ID (STYLE.md rule 3).
+/// Names of one module, all derived from its stable ID (docs/style.md rule 3).
 struct ModuleInfo {
     Module module;
     const char* id;  ///< stable ID: file, handout, TODO and test suite, e.g. "04_sphere"
