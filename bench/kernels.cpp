@@ -179,7 +179,7 @@ const std::vector<NamedSphereKernel>& sphere_kernels() {
         {"naive float (b^2 - c)", &sphere_naive_float},
         {"naive double", &sphere_naive_double},
         {"naive double, a = w.w", &sphere_naive_double_a},
-        {"reference (RTG ch. 7, float)", &reference::intersect_sphere},
+        {"reference (RTG ch. 7)", &reference::intersect_sphere},
         {"RTG ch. 7, double", &sphere_rtg_double},
         {"RTG ch. 7, double, a = w.w", &sphere_rtg_double_a},
     };
