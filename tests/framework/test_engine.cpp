@@ -25,23 +25,6 @@ ModuleTable module_path_table() {
     return t;
 }
 
-// The scene moved by `by`, lights and view with it: far from the origin, where float
-// positions are coarse and the numerics matter
-Scene translated(Scene scene, const Vec3& by) {
-    for (ScenePlane& p : scene.planes)
-        p.plane.d -= glm::dot(p.plane.n, by);
-    for (SceneSphere& s : scene.spheres)
-        s.sphere.c += by;
-    for (SceneTriangle& t : scene.triangles)
-        t.v0 += by, t.v1 += by, t.v2 += by;
-    for (PointLight& l : scene.lights)
-        l.p += by;
-    scene.view.eye += by;
-    scene.view.lookat += by;
-    scene.commit();
-    return scene;
-}
-
 // A floor plane under the Cornell box's triangles and a few spheres: all three kinds
 Scene mixed_scene() {
     Scene scene = cornell_box();

@@ -10,6 +10,7 @@
 
 #include "raylab/contract.h"
 #include "raylab/modules.h"
+#include "raylab/scene.h"
 
 namespace raylab {
 
@@ -73,5 +74,22 @@ class Rng {
   private:
     std::uint64_t state_;
 };
+
+/// The scene moved by `by`, lights and view with it: far from the origin, where float
+/// positions are coarse and the numerics matter
+inline Scene translated(Scene scene, const Vec3& by) {
+    for (ScenePlane& p : scene.planes)
+        p.plane.d -= glm::dot(p.plane.n, by);
+    for (SceneSphere& s : scene.spheres)
+        s.sphere.c += by;
+    for (SceneTriangle& t : scene.triangles)
+        t.v0 += by, t.v1 += by, t.v2 += by;
+    for (PointLight& l : scene.lights)
+        l.p += by;
+    scene.view.eye += by;
+    scene.view.lookat += by;
+    scene.commit();
+    return scene;
+}
 
 }  // namespace raylab

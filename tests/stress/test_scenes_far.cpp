@@ -9,21 +9,6 @@ using namespace raylab;
 
 namespace {
 
-Scene translated(Scene scene, const Vec3& by) {
-    for (SceneTriangle& t : scene.triangles)
-        t.v0 += by, t.v1 += by, t.v2 += by;
-    for (SceneSphere& s : scene.spheres)
-        s.sphere.c += by;
-    for (ScenePlane& p : scene.planes)
-        p.plane.d -= glm::dot(p.plane.n, by);
-    for (PointLight& l : scene.lights)
-        l.p += by;
-    scene.view.eye += by;
-    scene.view.lookat += by;
-    scene.commit();
-    return scene;
-}
-
 // Fraction of pixels whose value differs from the reference by more than 2% of its range
 double fraction_different(const Image& a, const Image& b) {
     size_t different = 0;
