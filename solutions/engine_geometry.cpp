@@ -143,11 +143,10 @@ inline float triangle_t(const Ray& r, const WoopRay& q, const Scene::Slot& tri,
     const double dt =
         3 * (gamma(3) * max_e * max_z + de * max_z + dz * max_e) * std::abs(inv_det);
     if (!(td > dt)) return NAN;
-    // The module also refuses a triangle whose normal has no length: len = sqrt(N . N)
-    // is > 0 exactly when N . N is (NaN fails both); the nearest hit's normal is
+    // The module also refuses a triangle whose normal has no length (len = sqrt(N . N)
+    // is > 0 exactly when N . N is): the scene gives such a triangle NaN vertices
+    // (Scene::Slot), which fail the range test above. The nearest hit's normal is
     // computed once, by triangle_normal
-    const DVec3 N = glm::cross(DVec3(tri.b) - DVec3(tri.a), DVec3(tri.c) - DVec3(tri.a));
-    if (!(glm::dot(N, N) > 0.0)) return NAN;
     extra.uv = Vec2(static_cast<float>(e1 * inv_det), static_cast<float>(e2 * inv_det));
     return t;
 }

@@ -171,7 +171,10 @@ void Scene::fill_slots() {
             slots_[k] = Slot{s.c, Vec3(s.r, 0.0f, 0.0f), Vec3(0.0f)};
         } else {
             const SceneTriangle& t = triangles[prims[k] - sphere_count];
-            slots_[k] = Slot{t.v0, t.v1, t.v2};
+            const DVec3 a(t.v0);
+            const DVec3 N = glm::cross(DVec3(t.v1) - a, DVec3(t.v2) - a);
+            slots_[k] = glm::dot(N, N) > 0.0 ? Slot{t.v0, t.v1, t.v2}
+                                             : Slot{Vec3(NAN), Vec3(NAN), Vec3(NAN)};
         }
     }
 }

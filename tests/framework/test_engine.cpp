@@ -103,6 +103,43 @@ TEST_SUITE("engine") {
         }
     }
 
+    // The engine skips the module's normal test: the scene gives degenerate triangles
+    // NaN slots instead (Scene::Slot). Rays exactly through points of collinear and
+    // repeated-vertex triangles must miss them on both paths (the conservative t > 0
+    // bound refuses most of them anyway) and, past the NaN slots, hit the wall behind
+    TEST_CASE("degenerate triangles are missed on both paths") {
+        Scene scene;
+        scene.materials.push_back(Material{});
+        const float wall = -2.0f;
+        scene.triangles.push_back(
+            {Vec3(-40, -40, wall), Vec3(40, -40, wall), Vec3(0, 40, wall)});
+        // Collinear in exact arithmetic (v2 - v0 = 2 (v1 - v0)) and repeated vertices
+        const Vec3 a(-0.5f, -0.25f, 0.0f), d(0.25f, 0.125f, 0.0625f);
+        scene.triangles.push_back({a, a + d, a + 2.0f * d});
+        scene.triangles.push_back({a + d, a + 2.0f * d, a});
+        scene.triangles.push_back({a, a, Vec3(0.3f, 0.1f, -0.2f)});
+        scene.triangles.push_back({Vec3(0.3f, 0.1f, -0.2f), a, a});
+        scene.commit();
+        const ModuleTable fast = engine_table(), slow = module_path_table();
+        Rng rng(5);
+        TraceCounters cf, cs;
+        for (int k = 0; k < 2000; ++k) {
+            // A point of a degenerate triangle: on the segment a .. a + 2d, or a itself
+            const float s = k % 4 == 0 ? 0.0f : std::ldexp(float(k % 64), -5);
+            const Vec3 target = a + s * d;
+            // Dyadic origins: w = target - o is exact, so the ray meets the triangle's
+            // line exactly and only the test's own rounding decides its edge signs
+            const Vec3 o =
+                Vec3(0.0f, 0.0f, 3.0f) + glm::floor(rng.in_box(-64.0f, 64.0f)) / 64.0f;
+            const Ray r{o, target - o, 0.0f, kInfinity};
+            INFO("ray " << k << ": " << r);
+            const auto h = scene.closest_hit(fast, r, cf);
+            check_same_hit(h, scene.closest_hit(slow, r, cs));
+            REQUIRE(h.has_value());
+            CHECK(h->position.z == doctest::Approx(wall).epsilon(1e-5));
+        }
+    }
+
     TEST_CASE("engine and module path render the same image") {
         const ModuleTable fast = engine_table(), slow = module_path_table();
         RenderSettings settings;

@@ -93,7 +93,10 @@ class Scene {
 
     /// A sphere or triangle in BVH slot order, for the engine: a triangle's vertices
     /// (a, b, c), or a sphere's centre a and radius b.x. Slot k holds primitive
-    /// bvh().prims()[k]: spheres are 0 .. spheres.size() - 1, triangles follow.
+    /// bvh().prims()[k]: spheres are 0 .. spheres.size() - 1, triangles follow. A
+    /// degenerate triangle (its normal (b - a) x (c - a), in double, has no length),
+    /// which the contract says is never hit, has NaN vertices, so the engine's test
+    /// misses it without computing the normal.
     struct Slot {
         Vec3 a, b, c;
     };
