@@ -82,7 +82,7 @@ std::vector<TriangleCase> triangle_cases(Rng& rng, double D, int n, bool grazing
             u = in_plane(), v = in_plane(), w = in_plane();
         }
         const Vec3 v0(c + u), v1(c + v), v2(c + w);
-        const DVec3 p = aim_in_triangle(rng, DVec3(v0), DVec3(v1), DVec3(v2), 0.9);
+        const DVec3 p = aim_in_triangle(rng, DVec3(v0), DVec3(v1), DVec3(v2), 1.25);
         cases.push_back({ray_towards(o, p), v0, v1, v2});
     }
     return cases;
