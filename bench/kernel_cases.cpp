@@ -62,7 +62,21 @@ std::vector<SphereCase> sphere_cases(Rng& rng, double D, int n, bool grazing) {
     return cases;
 }
 
-std::vector<TriangleCase> triangle_cases(Rng& rng, double D, int n, bool grazing) {
+const char* to_string(TriangleSet set) {
+    switch (set) {
+        case TriangleSet::random:
+            return "random";
+        case TriangleSet::grazing:
+            return "grazing";
+        case TriangleSet::sparse:
+            return "sparse";
+    }
+    return "?";
+}
+
+std::vector<TriangleCase> triangle_cases(Rng& rng, double D, int n, TriangleSet set) {
+    const bool grazing = set == TriangleSet::grazing;
+    const double aim_scale = set == TriangleSet::sparse ? 3.0 : 1.25;
     std::vector<TriangleCase> cases;
     cases.reserve(static_cast<size_t>(n));
     for (int k = 0; k < n; ++k) {
@@ -82,7 +96,7 @@ std::vector<TriangleCase> triangle_cases(Rng& rng, double D, int n, bool grazing
             u = in_plane(), v = in_plane(), w = in_plane();
         }
         const Vec3 v0(c + u), v1(c + v), v2(c + w);
-        const DVec3 p = aim_in_triangle(rng, DVec3(v0), DVec3(v1), DVec3(v2), 1.25);
+        const DVec3 p = aim_in_triangle(rng, DVec3(v0), DVec3(v1), DVec3(v2), aim_scale);
         cases.push_back({ray_towards(o, p), v0, v1, v2});
     }
     return cases;

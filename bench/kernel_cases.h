@@ -37,10 +37,17 @@ struct SharedEdgeCase {
 /// silhouette. (D must exceed 1.15 r + the origins' spread, 0.5 at most.)
 std::vector<SphereCase> sphere_cases(Rng& rng, double D, int n, bool grazing);
 
+/// The triangle ray sets: random, as many hits as a BVH's tests on camera rays see;
+/// grazing, near the triangle's plane; sparse, mostly misses, as the tests of shadow rays
+/// through a mesh.
+enum class TriangleSet { random, grazing, sparse };
+const char* to_string(TriangleSet set);
+
 /// Random rays at random triangles at distance D: the aim point is uniform in the
-/// triangle scaled by 1.25 about its centroid, so about 64% hit. grazing: the ray meets
-/// the triangle's plane at an angle of 10^-U(1, 5) radians.
-std::vector<TriangleCase> triangle_cases(Rng& rng, double D, int n, bool grazing);
+/// triangle scaled by 1.25 about its centroid, so about 64% hit (sparse: by 3, about
+/// 11%). grazing: as random, but the ray meets the triangle's plane at an angle of
+/// 10^-U(1, 5) radians.
+std::vector<TriangleCase> triangle_cases(Rng& rng, double D, int n, TriangleSet set);
 
 /// Rays aimed at points of an edge shared by two triangles at distance D.
 std::vector<SharedEdgeCase> shared_edge_cases(Rng& rng, double D, int n);

@@ -132,11 +132,13 @@ void sphere_table(const BenchOptions& opt) {
 
 void triangle_table(const BenchOptions& opt) {
     Table table = outcome_table();
-    std::uint64_t stream = 200;
-    for (const bool grazing : {false, true}) {
+    std::uint64_t stream = 200;  // the sparse sets take streams of their own (below)
+    for (const TriangleSet set :
+         {TriangleSet::random, TriangleSet::grazing, TriangleSet::sparse}) {
+        if (set == TriangleSet::sparse) stream = 250;
         for (const double D : opt.distances) {
             Rng rng(opt.seed, stream++);
-            const auto cases = triangle_cases(rng, D, opt.kernel_rays, grazing);
+            const auto cases = triangle_cases(rng, D, opt.kernel_rays, set);
             std::vector<std::optional<long double>> truth;
             for (const TriangleCase& c : cases)
                 truth.push_back(exact_triangle_t(c.r, c.v0, c.v1, c.v2));
@@ -147,8 +149,8 @@ void triangle_table(const BenchOptions& opt) {
             for (size_t k = 0; k < calls.size(); ++k) {
                 Outcome o = evaluate(cases, truth, calls[k]);
                 o.ns = ns[k];
-                table.row(outcome_cells(grazing ? "grazing" : "random", D,
-                                        triangle_kernels()[k].name, o, ns[0]));
+                table.row(outcome_cells(to_string(set), D, triangle_kernels()[k].name, o,
+                                        ns[0]));
             }
         }
     }
