@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
         if (options.render) run_render_section(options);
         if (options.scaling) run_scaling_section(options);
         if (options.sampling) run_sampling_section(options);
+        print_targets();
         std::printf("Total %.1f s; load average at the end: %.2f\n", seconds_since(start),
                     load_average());
         return 0;

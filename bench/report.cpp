@@ -148,4 +148,46 @@ void print_machine(unsigned long long seed, int repeats) {
     std::fflush(stdout);
 }
 
+namespace {
+
+struct TargetRecord {
+    std::string what;
+    double measured;
+    double target;
+    bool higher_is_better;
+    std::string unit;
+};
+
+std::vector<TargetRecord>& target_records() {
+    static std::vector<TargetRecord> records;
+    return records;
+}
+
+}  // namespace
+
+void record_target(const std::string& what, double measured, double target,
+                   bool higher_is_better, const std::string& unit) {
+    target_records().push_back({what, measured, target, higher_is_better, unit});
+}
+
+void print_targets() {
+    if (target_records().empty()) return;
+    print_heading(
+        "Targets",
+        "The issues' targets against this run's figures (issue 8: the kernels' "
+        "cost; issue 9: speed against Embree, frame time, build, memory). A ratio "
+        "to Embree is raylab's speed over Embree's (1 = as fast); a kernel's is "
+        "its ns/test over the float formulation's, on the worst ray set.");
+    Table table({"what", "measured", "target", "met"});
+    for (const TargetRecord& r : target_records()) {
+        const std::string bound = r.higher_is_better ? ">= " : "<= ";
+        const bool met =
+            r.higher_is_better ? r.measured >= r.target : r.measured <= r.target;
+        table.row({r.what, fmt("%.3g", r.measured) + r.unit,
+                   bound + fmt("%g", r.target) + r.unit,
+                   std::isnan(r.measured) ? "-" : (met ? "yes" : "**no**")});
+    }
+    table.print();
+}
+
 }  // namespace raylab::bench

@@ -64,6 +64,15 @@ double median_seconds(int repeats, Work&& work) {
 std::vector<double> interleaved_median_seconds(
     int repeats, const std::vector<std::function<void()>>& works);
 
+/// A figure the run measured against the target an issue sets for it. The sections
+/// record them as they go; print_targets() closes the run with one table, so the targets
+/// table in docs/benchmarks.md comes from the same run as the tables above it.
+/// higher_is_better: the target is a lower bound (a speed ratio), else an upper bound.
+void record_target(const std::string& what, double measured, double target,
+                   bool higher_is_better, const std::string& unit = "");
+/// Prints "## Targets" with every recorded figure, or nothing when none was recorded.
+void print_targets();
+
 /// Date, CPU, threads, load, compiler and seed: the header of every run.
 void print_machine(unsigned long long seed, int repeats);
 

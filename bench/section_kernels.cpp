@@ -25,6 +25,10 @@ struct Outcome {
     std::vector<double> rel_err;  // |t - t_true| / t_true where both hit
 };
 
+bool is_reference(const char* kernel_name) {
+    return std::string(kernel_name).rfind("reference", 0) == 0;
+}
+
 // One kernel, called through a function pointer the compiler cannot see through (as
 // through ModuleTable): no inlining into the timed loop
 struct SphereCall {
@@ -107,6 +111,7 @@ Table outcome_table() {
 
 void sphere_table(const BenchOptions& opt) {
     Table table = outcome_table();
+    double worst = 0.0;  // the reference's largest ratio to the float formulation
     std::uint64_t stream = 100;
     for (const bool grazing : {false, true}) {
         for (const double D : opt.distances) {
@@ -124,14 +129,19 @@ void sphere_table(const BenchOptions& opt) {
                 o.ns = ns[k];
                 table.row(outcome_cells(grazing ? "grazing" : "random", D,
                                         sphere_kernels()[k].name, o, ns[0]));
+                if (is_reference(sphere_kernels()[k].name))
+                    worst = std::max(worst, ns[k] / ns[0]);
             }
         }
     }
     table.print();
+    record_target("ray-sphere: reference / textbook float quadratic, worst ray set",
+                  worst, 1.5, false, "x");
 }
 
 void triangle_table(const BenchOptions& opt) {
     Table table = outcome_table();
+    double worst = 0.0, worst_sparse = 0.0;  // the reference's largest ratios to MT
     std::uint64_t stream = 200;  // the sparse sets take streams of their own (below)
     for (const TriangleSet set :
          {TriangleSet::random, TriangleSet::grazing, TriangleSet::sparse}) {
@@ -151,10 +161,20 @@ void triangle_table(const BenchOptions& opt) {
                 o.ns = ns[k];
                 table.row(outcome_cells(to_string(set), D, triangle_kernels()[k].name, o,
                                         ns[0]));
+                if (is_reference(triangle_kernels()[k].name)) {
+                    double& w = set == TriangleSet::sparse ? worst_sparse : worst;
+                    w = std::max(w, ns[k] / ns[0]);
+                }
             }
         }
     }
     table.print();
+    record_target(
+        "ray-triangle: reference / float Moeller-Trumbore, worst random or "
+        "grazing set",
+        worst, 1.5, false, "x");
+    record_target("ray-triangle: the same, worst sparse set (mostly misses)",
+                  worst_sparse, 1.5, false, "x");
 }
 
 // Rays through a shared edge: a watertight kernel hits at least one of the two triangles
