@@ -109,6 +109,27 @@ Table outcome_table() {
                  3);
 }
 
+// Times the kernels on one ray set (interleaved), checks each against the truth, adds
+// their rows, and returns the reference kernel's ratio to the first (float) kernel
+template <class Case, class Named, class Call>
+double kernel_rows(Table& table, const char* set, double D,
+                   const std::vector<Case>& cases,
+                   const std::vector<std::optional<long double>>& truth,
+                   const std::vector<Named>& kernels, int repeats) {
+    std::vector<Call> calls;
+    for (const Named& k : kernels)
+        calls.push_back(Call{k.fn});
+    const std::vector<double> ns = time_kernels(cases, calls, repeats);
+    double reference_ratio = NAN;
+    for (size_t k = 0; k < calls.size(); ++k) {
+        Outcome o = evaluate(cases, truth, calls[k]);
+        o.ns = ns[k];
+        table.row(outcome_cells(set, D, kernels[k].name, o, ns[0]));
+        if (is_reference(kernels[k].name)) reference_ratio = ns[k] / ns[0];
+    }
+    return reference_ratio;
+}
+
 void sphere_table(const BenchOptions& opt) {
     Table table = outcome_table();
     double worst = 0.0;  // the reference's largest ratio to the float formulation
@@ -120,18 +141,10 @@ void sphere_table(const BenchOptions& opt) {
             std::vector<std::optional<long double>> truth;
             for (const SphereCase& c : cases)
                 truth.push_back(exact_sphere_t(c.r, c.s));
-            std::vector<SphereCall> calls;
-            for (const NamedSphereKernel& k : sphere_kernels())
-                calls.push_back(SphereCall{k.fn});
-            const std::vector<double> ns = time_kernels(cases, calls, opt.repeats);
-            for (size_t k = 0; k < calls.size(); ++k) {
-                Outcome o = evaluate(cases, truth, calls[k]);
-                o.ns = ns[k];
-                table.row(outcome_cells(grazing ? "grazing" : "random", D,
-                                        sphere_kernels()[k].name, o, ns[0]));
-                if (is_reference(sphere_kernels()[k].name))
-                    worst = std::max(worst, ns[k] / ns[0]);
-            }
+            worst =
+                std::max(worst, kernel_rows<SphereCase, NamedSphereKernel, SphereCall>(
+                                    table, grazing ? "grazing" : "random", D, cases,
+                                    truth, sphere_kernels(), opt.repeats));
         }
     }
     table.print();
@@ -152,20 +165,10 @@ void triangle_table(const BenchOptions& opt) {
             std::vector<std::optional<long double>> truth;
             for (const TriangleCase& c : cases)
                 truth.push_back(exact_triangle_t(c.r, c.v0, c.v1, c.v2));
-            std::vector<TriangleCall> calls;
-            for (const NamedTriangleKernel& k : triangle_kernels())
-                calls.push_back(TriangleCall{k.fn});
-            const std::vector<double> ns = time_kernels(cases, calls, opt.repeats);
-            for (size_t k = 0; k < calls.size(); ++k) {
-                Outcome o = evaluate(cases, truth, calls[k]);
-                o.ns = ns[k];
-                table.row(outcome_cells(to_string(set), D, triangle_kernels()[k].name, o,
-                                        ns[0]));
-                if (is_reference(triangle_kernels()[k].name)) {
-                    double& w = set == TriangleSet::sparse ? worst_sparse : worst;
-                    w = std::max(w, ns[k] / ns[0]);
-                }
-            }
+            double& w = set == TriangleSet::sparse ? worst_sparse : worst;
+            w = std::max(w, kernel_rows<TriangleCase, NamedTriangleKernel, TriangleCall>(
+                                table, to_string(set), D, cases, truth,
+                                triangle_kernels(), opt.repeats));
         }
     }
     table.print();
