@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace raylab {
 
@@ -33,9 +34,18 @@ Vec3 ray_onto_plane(const Vec3& x, const Ray& r, const DVec3& n, double k) {
     const DVec3 o(r.o), w(r.w);
     const double wn = glm::dot(w, n), nn = glm::dot(n, n);
     if (wn != 0.0) {
-        const double inv = 1.0 / (wn * nn);
-        const DVec3 p = o + ((k - glm::dot(o, n)) * nn * inv) * w;
-        const DVec3 q = p - ((glm::dot(p, n) - k) * wn * inv) * n;
+        // w.n n.n underflows for triangles and rays of subnormal size (|w.n n.n| can be
+        // 2^-1040 where w.n and n.n are not): its reciprocal would overflow or lose bits,
+        // so there the two steps divide separately
+        const double wnn = wn * nn;
+        DVec3 q;
+        if (std::abs(wnn) >= std::numeric_limits<double>::min()) {
+            const double inv = 1.0 / wnn;
+            const DVec3 p = o + ((k - glm::dot(o, n)) * nn * inv) * w;
+            q = p - ((glm::dot(p, n) - k) * wn * inv) * n;
+        } else {
+            q = onto_plane(o + (k - glm::dot(o, n)) / wn * w, n, k);
+        }
         if (std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z))
             return to_float(q);
     }

@@ -140,6 +140,62 @@ TEST_SUITE("engine") {
         }
     }
 
+    // The test above still passes when the engine refuses nothing for a zero normal (no
+    // NaN slots, no normal test). A ray from far away exactly through a vertex of a
+    // collinear triangle can pass the watertight test and its conservative t > 0 bound
+    // (e0 = e1 = 0, e2 a rounding residue, uv = (0, 1), t = 1): only the module's normal
+    // test, and the scene's NaN slots on the engine's side, refuse it. Without them the
+    // engine hit these with a NaN normal while the module path missed
+    TEST_CASE("degenerate triangles hit through a vertex are missed on both paths") {
+        const ModuleTable fast = engine_table(), slow = module_path_table();
+        TraceCounters cf, cs;
+        {
+            // The case found first (v2 - v0 = 2 (v1 - v0), the ray ends at v2)
+            Scene scene;
+            scene.materials.push_back(Material{});
+            scene.triangles.push_back({Vec3(-0x1p-6f, 0x1.6p-1f, 0x1.bp-2f),
+                                       Vec3(0x1.7p-2f, 0x1.4p-2f, 0x1.08p-1f),
+                                       Vec3(0x1.78p-1f, -0x1p-4f, 0x1.38p-1f)});
+            scene.commit();
+            const Ray r{Vec3(0x1.5d08dcp+13f, 0x1.9bb8p+15f, 0x1.664acep+13f),
+                        Vec3(-0x1.5d02fcp+13f, -0x1.9bb82p+15f, -0x1.6645eep+13f), 0.0f,
+                        kInfinity};
+            CHECK_FALSE(scene.closest_hit(fast, r, cf).has_value());
+            CHECK_FALSE(scene.closest_hit(slow, r, cs).has_value());
+            CHECK_FALSE(scene.any_hit(fast, r, cf));
+            CHECK_FALSE(scene.any_hit(slow, r, cs));
+        }
+        // Collinear dyadic triangles (and repeated vertices), rays through their vertices
+        // from 1e2 .. 1e4 away: the scene holds nothing else, so every hit is wrong
+        Rng rng(11);
+        int rays = 0;
+        for (int s = 0; s < 200; ++s) {
+            Scene scene;
+            scene.materials.push_back(Material{});
+            const Vec3 a = glm::floor(rng.in_box(-64.0f, 64.0f)) / 64.0f;
+            const Vec3 d = glm::floor(rng.in_box(-64.0f, 64.0f)) / 64.0f;
+            for (int k = 0; k < 4; ++k) {
+                const auto at = [&](int j) { return a + float(j) * d; };
+                scene.triangles.push_back({at(k % 3 - 1), at(k - 2), at(2 - k % 2)});
+            }
+            scene.commit();
+            for (int j = 0; j < 50; ++j, ++rays) {
+                const SceneTriangle& t = scene.triangles[size_t(j) % 4];
+                const Vec3 target = j % 3 == 0 ? t.v0 : j % 3 == 1 ? t.v1 : t.v2;
+                const float far = j % 2 == 0 ? 1e4f : 1e2f;
+                const Vec3 o = target + rng.in_box(-far, far);
+                const Ray r{o, target - o, 0.0f, kInfinity};
+                INFO("scene " << s << ", ray " << j << ": " << r);
+                const auto h = scene.closest_hit(fast, r, cf);
+                check_same_hit(h, scene.closest_hit(slow, r, cs));
+                CHECK_FALSE(h.has_value());
+                CHECK(scene.any_hit(fast, r, cf) == scene.any_hit(slow, r, cs));
+                CHECK_FALSE(scene.any_hit(fast, r, cf));
+            }
+        }
+        CHECK(rays == 10000);
+    }
+
     TEST_CASE("engine and module path render the same image") {
         const ModuleTable fast = engine_table(), slow = module_path_table();
         RenderSettings settings;

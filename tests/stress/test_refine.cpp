@@ -83,4 +83,26 @@ TEST_SUITE("stress refine") {
         CHECK(same(refine_sphere_normal(x, Vec3(1, 0, 0), s), Vec3(1, 0, 0)));
         CHECK(!is_finite(refine_sphere_normal(x, Vec3(kNaN), s)));
     }
+    // refine_on_triangle promises the float rounding of where r meets the plane. A
+    // triangle and a ray direction of subnormal size make w.n n.n underflow (here w.n n.n
+    // is about 2^-1030): with one division 1 / (w.n n.n) the reciprocal overflows and the
+    // refinement fell back to projecting the module's point x, 2^10 subnormal ulps away
+    // (x is off by an ulp of o, 2^-138). Two divisions, (k - o.n) / w.n and (p.n - k) /
+    // n.n, stay in range
+    TEST_CASE(
+        "a subnormal triangle and ray: where the ray meets the plane, not x projected") {
+        const Vec3 v0(0x1.cp-147f, -0x1p-148f, 0x1.8p-148f),
+            v1(0x1p-146f, 0x1p-146f, 0x1p-147f), v2(0x1.cp-147f, 0.0f, 0x1.8p-148f);
+        const Ray r{Vec3(0x1.271c5ap-115f, 0x1.baaa88p-115f, 0x1.8p-148f),
+                    Vec3(-0x1p-138f, -0x1.8p-138f, 0.0f), 0.0f, kInfinity};
+        const Vec3 x(0.0f, 0.0f, 0x1.8p-148f);  // o + t w in float, t = 0x1.271c5ap+23
+        // The exact point (rational arithmetic on the float inputs), to double
+        const DVec3 exact(0x1.cp-147, 0x1.02ap-139, 0x1.8p-148);
+        const Vec3 p = refine_on_triangle(x, r, v0, v1, v2);
+        INFO("refined (" << p.x << ", " << p.y << ", " << p.z << ")");
+        const double ulp = 0x1p-149;
+        CHECK(std::abs(double(p.x) - exact.x) <= ulp);
+        CHECK(std::abs(double(p.y) - exact.y) <= ulp);
+        CHECK(std::abs(double(p.z) - exact.z) <= ulp);
+    }
 }
