@@ -38,6 +38,10 @@ std::vector<double> parse_distances(const std::string& value) {
         out.push_back(d);
         start = comma + 1;
     }
+    // Each ray set takes one seed stream per distance from a block of 50 (section 1)
+    if (out.size() > 50)
+        throw Error("--distances takes at most 50 values, got " +
+                    std::to_string(out.size()));
     return out;
 }
 
@@ -80,7 +84,7 @@ std::string bench_help() {
            "  --repeats N       timed repeats per measurement, median reported (5; quick "
            "3)\n"
            "  --rays N          rays per kernel ray set (131072; quick 16384)\n"
-           "  --distances LIST  target distances from the origin, each >= 1\n"
+           "  --distances LIST  target distances from the origin, each >= 1, at most 50\n"
            "                    (1,1e2,1e4,1e5,1e6)\n"
            "  --mesh-tris N     triangles of the procedural mesh (400000; quick 100000)\n"
            "  --max-tris N      largest mesh of the scaling section (2000000; quick\n"

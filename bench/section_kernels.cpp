@@ -155,10 +155,12 @@ void sphere_table(const BenchOptions& opt) {
 void triangle_table(const BenchOptions& opt) {
     Table table = outcome_table();
     double worst = 0.0, worst_sparse = 0.0;  // the reference's largest ratios to MT
-    std::uint64_t stream = 200;  // the sparse sets take streams of their own (below)
+    // Seed streams: random and grazing from 200, sparse from 400 (spheres: 100, shared
+    // edges: 300); --distances takes at most 50 values, so no two sets share one
+    std::uint64_t stream = 200;
     for (const TriangleSet set :
          {TriangleSet::random, TriangleSet::grazing, TriangleSet::sparse}) {
-        if (set == TriangleSet::sparse) stream = 250;
+        if (set == TriangleSet::sparse) stream = 400;
         for (const double D : opt.distances) {
             Rng rng(opt.seed, stream++);
             const auto cases = triangle_cases(rng, D, opt.kernel_rays, set);
@@ -197,24 +199,18 @@ std::vector<EdgeTruth> edge_truth(const std::vector<SharedEdgeCase>& cases) {
     return truth;
 }
 
+// One kernel's row for rays through shared edges; ns: its time per test, ratio: to the
+// first (float) kernel's
 std::vector<std::string> edge_row(double D, const NamedTriangleKernel& k,
                                   const std::vector<SharedEdgeCase>& cases,
-                                  const std::vector<EdgeTruth>& truth, int repeats) {
-    TriangleKernel volatile fn_hidden = k.fn;
-    const TriangleKernel fn = fn_hidden;
-    const double s = median_seconds(repeats, [&] {
-        float sum = 0.0f;
-        for (const SharedEdgeCase& c : cases) {
-            if (auto h = fn(c.r, c.a, c.b, c.c1)) sum += h->t;
-            if (auto h = fn(c.r, c.b, c.a, c.c2)) sum += h->t;
-        }
-        g_sink = sum;
-    });
+                                  const std::vector<EdgeTruth>& truth, double ns,
+                                  double ratio) {
+    const TriangleCall call{k.fn};
     size_t truth_hits = 0, leaks = 0, both = 0;
     std::vector<double> err;
     for (size_t i = 0; i < cases.size(); ++i) {
         const SharedEdgeCase& c = cases[i];
-        const auto h1 = fn(c.r, c.a, c.b, c.c1), h2 = fn(c.r, c.b, c.a, c.c2);
+        const auto h1 = call({c.r, c.a, c.b, c.c1}), h2 = call({c.r, c.b, c.a, c.c2});
         const auto& t = truth[i].t;
         truth_hits += t.has_value();
         leaks += t && !h1 && !h2;
@@ -227,7 +223,8 @@ std::vector<std::string> edge_row(double D, const NamedTriangleKernel& k,
     const double n = static_cast<double>(truth_hits);
     return {fmt("%g", D),
             k.name,
-            fmt("%.1f", 1e9 * s / (2.0 * static_cast<double>(cases.size()))),
+            fmt("%.1f", ns),
+            fmt("%.2f", ratio),
             fmt("%zu", truth_hits),
             fmt("%zu", leaks),
             fmt("%.3f", 100.0 * static_cast<double>(leaks) / n),
@@ -236,16 +233,28 @@ std::vector<std::string> edge_row(double D, const NamedTriangleKernel& k,
 }
 
 void shared_edge_table(const BenchOptions& opt) {
-    Table table({"D", "kernel", "ns/test", "truth hits", "hit neither (leak)", "leak %",
-                 "hit both", "max rel err t"},
+    Table table({"D", "kernel", "ns/test", "x float", "truth hits", "hit neither (leak)",
+                 "leak %", "hit both", "max rel err t"},
                 2);
     std::uint64_t stream = 300;
     for (const double D : opt.distances) {
         Rng rng(opt.seed, stream++);
         const auto cases = shared_edge_cases(rng, D, opt.kernel_rays);
         const auto truth = edge_truth(cases);
+        // Each case is two tests, one per triangle of the fold: the kernels interleaved
+        std::vector<TriangleCase> tests;
+        tests.reserve(2 * cases.size());
+        for (const SharedEdgeCase& c : cases) {
+            tests.push_back({c.r, c.a, c.b, c.c1});
+            tests.push_back({c.r, c.b, c.a, c.c2});
+        }
+        std::vector<TriangleCall> calls;
         for (const NamedTriangleKernel& k : triangle_kernels())
-            table.row(edge_row(D, k, cases, truth, opt.repeats));
+            calls.push_back(TriangleCall{k.fn});
+        const std::vector<double> ns = time_kernels(tests, calls, opt.repeats);
+        for (size_t k = 0; k < calls.size(); ++k)
+            table.row(
+                edge_row(D, triangle_kernels()[k], cases, truth, ns[k], ns[k] / ns[0]));
     }
     table.print();
 }
