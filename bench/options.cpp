@@ -23,6 +23,14 @@ long long parse_integer(const std::string& option, const std::string& value, lon
     return v;
 }
 
+void parse_size(const std::string& option, const std::string& value, int& width,
+                int& height) {
+    const size_t x = value.find('x');
+    if (x == std::string::npos) throw Error(option + " expects WxH, got '" + value + "'");
+    width = static_cast<int>(parse_integer(option, value.substr(0, x), 1, 16384));
+    height = static_cast<int>(parse_integer(option, value.substr(x + 1), 1, 16384));
+}
+
 std::vector<double> parse_distances(const std::string& value) {
     std::vector<double> out;
     size_t start = 0;
@@ -80,6 +88,10 @@ std::string bench_help() {
            "  --sections LIST   kernels,scenes,render,scaling,sampling or all (default "
            "all)\n"
            "  --out DIR         where the sampling section writes sampling.csv/.svg (.)\n"
+           "  --sampling-size WxH  renders of the sampling section (240x180; quick\n"
+           "                    160x120)\n"
+           "  --sampling-csv FILE  the sampling section prints its tables from FILE (a\n"
+           "                    sampling.csv of an earlier run) instead of rendering\n"
            "  --quick           a run of about 30 s: fewer rays, repeats and triangles\n"
            "  --repeats N       timed repeats per measurement, median reported (5; quick "
            "3)\n"
@@ -138,12 +150,11 @@ BenchOptions parse_bench_options(int argc, char** argv) {
             o.max_triangles =
                 static_cast<int>(parse_integer(arg, value(), 1000, 20000000));
         } else if (arg == "--size") {
-            const std::string v = value();
-            const size_t x = v.find('x');
-            if (x == std::string::npos)
-                throw Error("--size expects WxH, got '" + v + "'");
-            o.width = static_cast<int>(parse_integer(arg, v.substr(0, x), 1, 16384));
-            o.height = static_cast<int>(parse_integer(arg, v.substr(x + 1), 1, 16384));
+            parse_size(arg, value(), o.width, o.height);
+        } else if (arg == "--sampling-size") {
+            parse_size(arg, value(), o.sampling_width, o.sampling_height);
+        } else if (arg == "--sampling-csv") {
+            o.sampling_csv = value();
         } else if (arg == "--threads") {
             o.threads = static_cast<int>(parse_integer(arg, value(), 1, 1024));
         } else if (arg == "--seed") {

@@ -19,6 +19,7 @@ struct BenchOptions {
     int sampling_width = 240;  ///< image size of section 5 (quick: 160 x 120)
     int sampling_height = 180;
     std::string out_dir = ".";  ///< where section 5 writes sampling.csv and .svg
+    std::string sampling_csv;   ///< section 5 prints its tables from this CSV, no renders
     bool quick = false;         ///< fewer rays, repeats and triangles
     int repeats = 5;            ///< timed repeats per measurement (median reported)
     int kernel_rays = 1 << 17;  ///< rays per kernel ray set

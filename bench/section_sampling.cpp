@@ -4,15 +4,18 @@
 // For the Cornell box and the DTU scene, every scheme renders at growing sample counts
 // and each image's RMSE against a converged image of the same scene is set against its
 // render time and rays. Anti-aliasing (point lights, hard shadows): grid, stratified and
-// adaptive pixel samples; the converged image has 32 x 32 stratified samples per pixel.
-// Area lights (one ray per pixel centre): 1..256 uniform against stratified light
-// samples; the converged image has 1024 stratified ones. Writes the table, a CSV and an
-// SVG plot (log-log, one line per scheme).
+// adaptive pixel samples. Area lights (one ray per pixel centre): uniform against
+// stratified light samples. Writes a CSV and two SVG plots (log-log, one line per
+// scheme) and prints, as Markdown, every table of docs/sampling-benchmarks.md: the
+// targets, the convergence exponents, and each study's rows. The tables are computed from
+// the points as the CSV stores them, so --sampling-csv FILE prints the same tables again
+// from a CSV of an earlier run without rendering (tests/handouts/check_sampling_doc.py).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
-#include <map>
+#include <sstream>
 
 #include "raylab/error.h"
 #include "raylab/renderer.h"
@@ -24,6 +27,24 @@ namespace raylab::bench {
 
 namespace {
 
+// ---- What the studies sweep (the section's introduction lists them from here) ---------
+
+constexpr int kGridN[] = {1, 2, 3, 4, 6, 8};  ///< grid and stratified: n x n per pixel
+constexpr int kAdaptiveN[] = {4, 5, 8};       ///< adaptive: n x n in refined pixels
+constexpr float kThresholds[] = {0.8f, 0.4f, 0.2f, 0.1f, 0.05f};  ///< adaptive contrast
+constexpr int kMaxLightSamples = 256;          ///< light samples 1, 2, 4, .. this
+constexpr int kConvergedLightSamples = 1024;   ///< the area light's converged image
+constexpr float kLightSizes[] = {0.4f, 1.5f};  ///< per scene: about a tenth of its size
+constexpr double kTargetSpp = 16;              ///< the anti-aliasing target's reference
+constexpr double kTargetLightSamples = 256;    ///< the area-light target's reference
+/// The exponent of the grid and stratified pixel samples is fitted from 4 samples on:
+/// with 1 sample the grid is the pixel centre and the stratified sample one random point
+constexpr double kFitFromSpp = 4;
+
+int converged_spp(const BenchOptions& opt) {
+    return opt.quick ? 256 : 1024;
+}
+
 struct Point {
     std::string scene, study, scheme;
     double parameter;  ///< samples per pixel, light samples, or the adaptive threshold
@@ -31,6 +52,71 @@ struct Point {
     double rays;       ///< camera rays (anti-aliasing) or shadow rays (area light)
     double ms, rmse;
 };
+
+// ---- The CSV: every table is computed from the points as it stores them ---------------
+
+const char* const kCsvHeader = "scene,study,scheme,parameter,spp,rays,ms,rmse";
+
+std::string csv_row(const Point& p) {
+    return p.scene + "," + p.study + "," + p.scheme + "," + fmt("%g", p.parameter) + "," +
+           std::to_string(p.spp) + "," + fmt("%.0f", p.rays) + "," + fmt("%.3f", p.ms) +
+           "," + fmt("%.6g", p.rmse);
+}
+
+// One row of the CSV; where names the file and line for the error
+Point parse_csv_row(const std::string& line, const std::string& where) {
+    std::vector<std::string> f;
+    std::stringstream in(line);
+    for (std::string cell; std::getline(in, cell, ',');)
+        f.push_back(cell);
+    if (f.size() != 8)
+        throw Error(where + ": expected 8 comma-separated fields (" + kCsvHeader +
+                    "), got " + std::to_string(f.size()));
+    const auto number = [&](int k) {
+        char* end = nullptr;
+        const double v = std::strtod(f[size_t(k)].c_str(), &end);
+        if (f[size_t(k)].empty() || *end != '\0' || !std::isfinite(v))
+            throw Error(where + ": field " + std::to_string(k + 1) + " '" + f[size_t(k)] +
+                        "' is not a number");
+        return v;
+    };
+    Point p;
+    p.scene = f[0], p.study = f[1], p.scheme = f[2];
+    p.parameter = number(3), p.spp = int(number(4)), p.rays = number(5);
+    p.ms = number(6), p.rmse = number(7);
+    if (p.study != "aa" && p.study != "light")
+        throw Error(where + ": study '" + p.study + "' is neither aa nor light");
+    return p;
+}
+
+/// p as the CSV stores it: tables computed live and from the CSV are then the same
+Point quantised(const Point& p) {
+    return parse_csv_row(csv_row(p), "quantised point");
+}
+
+std::vector<Point> read_csv(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw Error("cannot read " + path);
+    std::string line;
+    if (!std::getline(in, line) || line != kCsvHeader)
+        throw Error(path + ":1: expected the header " + kCsvHeader);
+    std::vector<Point> points;
+    for (int n = 2; std::getline(in, line); ++n)
+        if (!line.empty())
+            points.push_back(parse_csv_row(line, path + ":" + std::to_string(n)));
+    if (points.empty()) throw Error(path + ": no measurements");
+    return points;
+}
+
+void write_csv(const std::string& path, const std::vector<Point>& points) {
+    std::ofstream out(path);
+    if (!out) throw Error("cannot write " + path);
+    out << kCsvHeader << "\n";
+    for (const Point& p : points)
+        out << csv_row(p) << "\n";
+}
+
+// ---- Measuring ------------------------------------------------------------------------
 
 double rmse(const Image& a, const Image& b) {
     double sum = 0.0;
@@ -153,19 +239,7 @@ void write_svg(const std::string& path, const std::vector<Point>& points, bool b
     out << "</svg>\n";
 }
 
-void write_csv(const std::string& path, const std::vector<Point>& points) {
-    std::ofstream out(path);
-    if (!out) throw Error("cannot write " + path);
-    out << "scene,study,scheme,parameter,spp,rays,ms,rmse\n";
-    for (const Point& p : points)
-        out << p.scene << "," << p.study << "," << p.scheme << "," << p.parameter << ","
-            << p.spp << "," << p.rays << "," << fmt("%.3f", p.ms) << ","
-            << fmt("%.6g", p.rmse) << "\n";
-}
-
-}  // namespace
-
-namespace {
+// ---- The studies ----------------------------------------------------------------------
 
 // The anti-aliasing study of one scene: point lights, the pixel samples vary
 void aa_study(const Scene& scene, const BenchOptions& opt, const ModuleTable& modules,
@@ -175,25 +249,25 @@ void aa_study(const Scene& scene, const BenchOptions& opt, const ModuleTable& mo
     base.height = opt.sampling_height;
     base.threads = all_threads(opt);
     RenderSettings converged = base;
-    converged.spp = opt.quick ? 256 : 1024;
+    converged.spp = converged_spp(opt);
     converged.sampling = PixelSampling::stratified;
     converged.seed = 999;
     Image reference;
     render(scene, scene.view, converged, modules, reference);
     const int repeats = std::min(opt.repeats, 3);
     for (PixelSampling sampling : {PixelSampling::grid, PixelSampling::stratified}) {
-        for (int n : {1, 2, 3, 4, 6, 8}) {
+        for (int n : kGridN) {
             RenderSettings s = base;
             s.spp = n * n;
             s.sampling = sampling;
             Point p = measure(scene, s, reference, modules, repeats, false);
             p.study = "aa", p.scheme = to_string(sampling), p.parameter = n * n;
             p.spp = n * n;
-            points.push_back(p);
+            points.push_back(quantised(p));
         }
     }
-    for (int n : {4, 5, 8}) {
-        for (float threshold : {0.8f, 0.4f, 0.2f, 0.1f, 0.05f}) {
+    for (int n : kAdaptiveN) {
+        for (float threshold : kThresholds) {
             RenderSettings s = base;
             s.spp = n * n;
             s.sampling = PixelSampling::adaptive;
@@ -201,7 +275,7 @@ void aa_study(const Scene& scene, const BenchOptions& opt, const ModuleTable& mo
             Point p = measure(scene, s, reference, modules, repeats, false);
             p.study = "aa", p.scheme = fmt("adaptive %d", n * n), p.parameter = threshold;
             p.spp = n * n;
-            points.push_back(p);
+            points.push_back(quantised(p));
         }
     }
 }
@@ -215,23 +289,25 @@ void light_study(const Scene& scene, float size, const BenchOptions& opt,
     base.threads = all_threads(opt);
     base.light_size = size;
     RenderSettings converged = base;
-    converged.light_samples = 1024;
+    converged.light_samples = kConvergedLightSamples;
     converged.seed = 999;
     Image reference;
     render(scene, scene.view, converged, modules, reference);
     const int repeats = std::min(opt.repeats, 3);
     for (bool stratified : {false, true}) {
-        for (int N = 1; N <= 256; N *= 2) {
+        for (int N = 1; N <= kMaxLightSamples; N *= 2) {
             RenderSettings s = base;
             s.light_samples = N;
             s.light_stratified = stratified;
             Point p = measure(scene, s, reference, modules, repeats, true);
             p.study = "light", p.scheme = stratified ? "stratified" : "uniform";
             p.parameter = N, p.spp = 1;
-            points.push_back(p);
+            points.push_back(quantised(p));
         }
     }
 }
+
+// ---- The tables -----------------------------------------------------------------------
 
 const Point* find(const std::vector<Point>& points, const std::string& scene,
                   const std::string& study, const std::string& scheme, double parameter) {
@@ -240,6 +316,30 @@ const Point* find(const std::vector<Point>& points, const std::string& scene,
             p.parameter == parameter)
             return &p;
     return nullptr;
+}
+
+// The points of one scene, study and scheme, in the CSV's order
+std::vector<const Point*> line_of(const std::vector<Point>& points,
+                                  const std::string& scene, const std::string& study,
+                                  const std::string& scheme) {
+    std::vector<const Point*> out;
+    for (const Point& p : points)
+        if (p.scene == scene && p.study == study && p.scheme == scheme) out.push_back(&p);
+    return out;
+}
+
+// Distinct values of field over points, in order of first appearance
+template <class Field>
+std::vector<std::string> distinct(const std::vector<Point>& points, Field field) {
+    std::vector<std::string> out;
+    for (const Point& p : points)
+        if (std::find(out.begin(), out.end(), field(p)) == out.end())
+            out.push_back(field(p));
+    return out;
+}
+
+std::vector<std::string> scenes_of(const std::vector<Point>& points) {
+    return distinct(points, [](const Point& p) { return p.scene; });
 }
 
 // The cheapest point of study whose scheme starts with prefix and whose RMSE is at most
@@ -256,72 +356,248 @@ const Point* cheapest_match(const std::vector<Point>& points, const Point& targe
     return best;
 }
 
+std::string ratio(double a, double b) {
+    return fmt("%.2f", a / b);
+}
+
+std::string ms_vs(const Point& a, const Point& b) {
+    return fmt("%.0f ms vs %.0f ms", a.ms, b.ms);
+}
+
+void print_subheading(const char* title, const std::string& text) {
+    std::printf("### %s\n\n%s\n\n", title, text.c_str());
+}
+
+// The targets: the cheapest measured setting that reaches the reference's RMSE
+void print_target_table(const std::vector<Point>& points) {
+    print_subheading(
+        "The targets",
+        "For each target, the cheapest measured setting whose RMSE is at most the "
+        "reference's, and its share of the reference's cost: camera rays (anti-aliasing) "
+        "or light samples (area light). The time column is one run's and noisy; the "
+        "share is deterministic.");
+    Table table({"scene", "target", "reference", "cheapest with at most its RMSE",
+                 "share", "time", "met"},
+                4);
+    int met = 0, targets = 0;
+    for (const std::string& scene : scenes_of(points)) {
+        if (const Point* s = find(points, scene, "aa", "stratified", kTargetSpp)) {
+            const Point* a = cheapest_match(points, *s, "adaptive");
+            const bool ok = a && a->rays * 3 <= s->rays;
+            table.row({scene,
+                       fmt("adaptive anti-aliasing: at most 1/3 of stratified %g's "
+                           "camera rays",
+                           kTargetSpp),
+                       fmt("stratified %g: RMSE %s, %.0f rays", kTargetSpp,
+                           sci(s->rmse).c_str(), s->rays),
+                       a ? fmt("%s, threshold %g: RMSE %s, %.0f rays", a->scheme.c_str(),
+                               a->parameter, sci(a->rmse).c_str(), a->rays)
+                         : "none",
+                       a ? ratio(a->rays, s->rays) : "-", a ? ms_vs(*a, *s) : "-",
+                       ok ? "yes" : "no"});
+            met += ok, ++targets;
+        }
+        if (const Point* u =
+                find(points, scene, "light", "uniform", kTargetLightSamples)) {
+            const Point* st = cheapest_match(points, *u, "stratified");
+            const bool ok = st && st->parameter * 4 <= u->parameter;
+            table.row(
+                {scene,
+                 fmt("stratified light samples: at most 1/4 of %g uniform ones",
+                     kTargetLightSamples),
+                 fmt("uniform %g: RMSE %s", kTargetLightSamples, sci(u->rmse).c_str()),
+                 st ? fmt("stratified %g: RMSE %s", st->parameter, sci(st->rmse).c_str())
+                    : "none",
+                 st ? fmt("%.3f (%g of %g)", st->parameter / u->parameter, st->parameter,
+                          u->parameter)
+                    : "-",
+                 st ? ms_vs(*st, *u) : "-", ok ? "yes" : "no"});
+            met += ok, ++targets;
+        }
+    }
+    table.print();
+    std::printf("Targets met: %d of %d.\n\n", met, targets);
+}
+
+// How fast the error falls: the exponent of RMSE ~ N^e between the first and last count
+void print_convergence(const std::vector<Point>& points) {
+    print_subheading(
+        "How fast the error falls",
+        fmt("RMSE from the first to the last sample count of each scheme, and the "
+            "exponent e "
+            "of RMSE ~ N^e through those two points (N: samples per pixel, or light "
+            "samples; anti-aliasing from %g samples). The handout's exponent is for a "
+            "pixel on an edge or in a penumbra, where the error is.",
+            kFitFromSpp));
+    Table table({"scene", "scheme", "samples", "RMSE", "falls by", "exponent",
+                 "handout's exponent"},
+                3);
+    struct Line {
+        const char *study, *scheme, *label, *handout;
+        double from;
+    };
+    const Line lines[] = {
+        {"aa", "grid", "grid", "-1/2 (09 §2)", kFitFromSpp},
+        {"aa", "stratified", "stratified", "-3/4 (09 §3)", kFitFromSpp},
+        {"light", "uniform", "light, uniform", "-1/2 (10 §3)", 1},
+        {"light", "stratified", "light, stratified", "-3/4 (10 §3)", 1}};
+    for (const std::string& scene : scenes_of(points)) {
+        for (const Line& l : lines) {
+            const Point *a = nullptr, *b = nullptr;
+            for (const Point* p : line_of(points, scene, l.study, l.scheme)) {
+                if (p->parameter < l.from) continue;
+                if (!a || p->parameter < a->parameter) a = p;
+                if (!b || p->parameter > b->parameter) b = p;
+            }
+            if (!a || a == b) continue;
+            const double e =
+                std::log(b->rmse / a->rmse) / std::log(b->parameter / a->parameter);
+            table.row({scene, l.label, fmt("%g to %g", a->parameter, b->parameter),
+                       sci(a->rmse) + " to " + sci(b->rmse),
+                       fmt("%.1f", a->rmse / b->rmse), fmt("%.2f", e), l.handout});
+        }
+    }
+    table.print();
+}
+
+// Grid against stratified pixel samples, count by count
+void print_grid_stratified(const std::vector<Point>& points) {
+    print_subheading("Anti-aliasing: grid against stratified",
+                     "Both schemes cast the same camera rays at each count. grid / "
+                     "stratified above 1: stratified has the lower error.");
+    Table table({"scene", "samples per pixel", "camera rays", "grid RMSE",
+                 "stratified RMSE", "grid / stratified", "grid ms", "stratified ms"},
+                1);
+    for (const std::string& scene : scenes_of(points))
+        for (const Point* g : line_of(points, scene, "aa", "grid"))
+            if (const Point* s = find(points, scene, "aa", "stratified", g->parameter))
+                table.row({scene, fmt("%g", g->parameter), fmt("%.0f", g->rays),
+                           sci(g->rmse), sci(s->rmse), ratio(g->rmse, s->rmse),
+                           fmt("%.1f", g->ms), fmt("%.1f", s->ms)});
+    table.print();
+}
+
+// Adaptive against stratified with as many samples in every pixel
+void print_adaptive(const std::vector<Point>& points) {
+    print_subheading(
+        "Anti-aliasing: adaptive",
+        "Adaptive N at each threshold against stratified N (N samples in every pixel; "
+        "'-' where that count was not measured): its share of the camera rays, and its "
+        "RMSE over stratified N's (below 1: adaptive has the lower error).");
+    Table table({"scene", "scheme", "threshold", "camera rays", "share of stratified N's",
+                 "RMSE", "RMSE / stratified N's", "ms"},
+                2);
+    for (const std::string& scene : scenes_of(points))
+        for (const std::string& scheme :
+             distinct(points, [](const Point& p) { return p.scheme; })) {
+            if (scheme.rfind("adaptive", 0) != 0) continue;
+            for (const Point* a : line_of(points, scene, "aa", scheme)) {
+                const Point* s = find(points, scene, "aa", "stratified", a->spp);
+                table.row({scene, scheme, fmt("%g", a->parameter), fmt("%.0f", a->rays),
+                           s ? ratio(a->rays, s->rays) : "-", sci(a->rmse),
+                           s ? ratio(a->rmse, s->rmse) : "-", fmt("%.1f", a->ms)});
+            }
+        }
+    table.print();
+}
+
+// Uniform against stratified light samples, count by count
+void print_light(const std::vector<Point>& points) {
+    print_subheading("Area light: uniform against stratified",
+                     "uniform / stratified above 1: stratified has the lower error.");
+    Table table({"scene", "light samples", "uniform shadow rays", "uniform RMSE",
+                 "stratified shadow rays", "stratified RMSE", "uniform / stratified",
+                 "uniform ms", "stratified ms"},
+                1);
+    for (const std::string& scene : scenes_of(points))
+        for (const Point* u : line_of(points, scene, "light", "uniform"))
+            if (const Point* s = find(points, scene, "light", "stratified", u->parameter))
+                table.row({scene, fmt("%g", u->parameter), fmt("%.0f", u->rays),
+                           sci(u->rmse), fmt("%.0f", s->rays), sci(s->rmse),
+                           ratio(u->rmse, s->rmse), fmt("%.1f", u->ms),
+                           fmt("%.1f", s->ms)});
+    table.print();
+}
+
+// Every table of docs/sampling-benchmarks.md, from the points alone
+void print_tables(const std::vector<Point>& points) {
+    print_target_table(points);
+    print_convergence(points);
+    print_grid_stratified(points);
+    print_adaptive(points);
+    print_light(points);
+}
+
+// "1, 4 and 9": the values (or their squares) of [begin, end)
+std::string list(const int* begin, const int* end, bool squares) {
+    std::string out;
+    for (const int* n = begin; n != end; ++n) {
+        if (n != begin) out += n + 1 == end ? " and " : ", ";
+        out += std::to_string(squares ? *n * *n : *n);
+    }
+    return out;
+}
+
+// What the run measured, with the settings it swept
+std::string introduction(const BenchOptions& opt, const Scene* scenes, int count) {
+    std::string thresholds, sizes;
+    for (float t : kThresholds)
+        thresholds += (thresholds.empty() ? "" : ", ") + fmt("%g", double(t));
+    for (int k = 0; k < count; ++k)
+        sizes += (k ? ", " : "") +
+                 fmt("%g in %s", double(kLightSizes[k]), scenes[k].name.c_str());
+    return fmt(
+        "render() at %dx%d pixels with the reference modules on %d threads. "
+        "**Anti-aliasing** (module 09; point lights, hard shadows): grid and stratified "
+        "with %s samples per pixel, and adaptive N (one sample at every pixel centre, "
+        "then N stratified samples in the pixels whose 3 x 3 neighbourhood has a "
+        "contrast above the threshold) with N = %s and thresholds %s; converged image: "
+        "%d stratified samples per pixel; cost: camera rays (the shadow rays grow with "
+        "them). **Area light** (module 10; one ray through each pixel centre): each "
+        "point light replaced by a square area light (side %s), 1 to %d uniform or "
+        "stratified light samples; converged image: %d stratified light samples; cost: "
+        "shadow rays. Error: the RMSE of the linear RGB radiance over all pixels and "
+        "channels against the converged image of the same scene.\n\n"
+        "Rays and RMSE are deterministic: every sample comes from the seeded PixelRng, "
+        "so they are the same on every machine and every run of the same code. Times "
+        "(ms) are not: each is the median of %d frames after a warm-up on this machine "
+        "at its load, and changes from run to run.",
+        opt.sampling_width, opt.sampling_height, all_threads(opt),
+        list(std::begin(kGridN), std::end(kGridN), true).c_str(),
+        list(std::begin(kAdaptiveN), std::end(kAdaptiveN), true).c_str(),
+        thresholds.c_str(), converged_spp(opt), sizes.c_str(), kMaxLightSamples,
+        kConvergedLightSamples, std::min(opt.repeats, 3));
+}
+
 }  // namespace
 
 void run_sampling_section(const BenchOptions& opt) {
-    print_heading(
-        "4. Sampling: run time against error (modules 09 and 10)",
-        fmt("render() at %dx%d with the reference modules on %d threads; ms: median of "
-            "%d "
-            "frames. RMSE over the linear RGB radiance against a converged image of the "
-            "same scene: %d stratified samples per pixel (anti-aliasing, point lights) "
-            "or "
-            "1024 stratified light samples (area light, one ray per pixel centre). Rays: "
-            "camera rays (anti-aliasing) or shadow rays (area light). Adaptive N: one "
-            "sample everywhere, N stratified ones where the contrast exceeds the "
-            "threshold (the parameter). CSV and SVG in %s.",
-            opt.sampling_width, opt.sampling_height, all_threads(opt),
-            std::min(opt.repeats, 3), opt.quick ? 256 : 1024, opt.out_dir.c_str()));
+    const char* const title = "5. Sampling: run time against error (modules 09 and 10)";
+    if (!opt.sampling_csv.empty()) {
+        const std::vector<Point> points = read_csv(opt.sampling_csv);
+        print_heading(title,
+                      "Recomputed from " + opt.sampling_csv +
+                          " (a sampling.csv of an earlier run); nothing rendered.");
+        print_tables(points);
+        return;
+    }
     const ModuleTable modules = ModuleTable::make(ModuleSelection::all(Impl::reference));
-    std::vector<Point> points;
     const Scene scenes[] = {cornell_box(), dtu_scene()};
-    const float light_sizes[] = {0.4f, 1.5f};  // about a tenth of each scene's size
-    for (int k = 0; k < 2; ++k) {
+    static_assert(std::size(kLightSizes) == std::size(scenes));
+    print_heading(title, introduction(opt, scenes, int(std::size(scenes))));
+    std::vector<Point> points;
+    for (size_t k = 0; k < std::size(scenes); ++k) {
         aa_study(scenes[k], opt, modules, points);
-        light_study(scenes[k], light_sizes[k], opt, modules, points);
+        light_study(scenes[k], kLightSizes[k], opt, modules, points);
     }
-    Table table({"scene", "study", "scheme", "parameter", "rays", "ms", "RMSE"}, 3);
-    for (const Point& p : points)
-        table.row({p.scene, p.study, p.scheme, fmt("%g", p.parameter),
-                   fmt("%.0f", p.rays), fmt("%.1f", p.ms), sci(p.rmse)});
-    table.print();
-
-    // The targets
-    std::printf("\nTargets:\n");
-    for (const Scene& scene : scenes) {
-        if (const Point* s16 = find(points, scene.name, "aa", "stratified", 16)) {
-            const Point* a = cheapest_match(points, *s16, "adaptive");
-            if (a)
-                std::printf(
-                    "- %s: adaptive (%s, threshold %g) reaches stratified-16's "
-                    "RMSE %s with %.0f camera rays, %.2f of its %.0f (target <= "
-                    "1/3: %s)\n",
-                    scene.name.c_str(), a->scheme.c_str(), a->parameter,
-                    sci(s16->rmse).c_str(), a->rays, a->rays / s16->rays, s16->rays,
-                    a->rays * 3 <= s16->rays ? "met" : "missed");
-            else
-                std::printf(
-                    "- %s: no adaptive setting reaches stratified-16's RMSE %s "
-                    "(target missed)\n",
-                    scene.name.c_str(), sci(s16->rmse).c_str());
-        }
-        if (const Point* u256 = find(points, scene.name, "light", "uniform", 256)) {
-            const Point* st = cheapest_match(points, *u256, "stratified");
-            if (st)
-                std::printf(
-                    "- %s: stratified light sampling reaches uniform-256's RMSE %s "
-                    "with %g samples, %.3f of 256 (target <= 1/4: %s)\n",
-                    scene.name.c_str(), sci(u256->rmse).c_str(), st->parameter,
-                    st->parameter / 256.0, st->parameter * 4 <= 256 ? "met" : "missed");
-        }
-    }
+    print_tables(points);
     write_csv(opt.out_dir + "/sampling.csv", points);
     write_svg(opt.out_dir + "/sampling.svg", points, false);
     write_svg(opt.out_dir + "/sampling-rays.svg", points, true);
     std::printf(
-        "\nWrote sampling.csv, sampling.svg (RMSE against time) and "
+        "Wrote sampling.csv (all %zu measurements), sampling.svg (RMSE against time) and "
         "sampling-rays.svg (against rays) in %s\n\n",
-        opt.out_dir.c_str());
+        points.size(), opt.out_dir.c_str());
 }
 
 }  // namespace raylab::bench

@@ -22,8 +22,9 @@ void run_render_section(const BenchOptions& options);
 /// MEDIUM build on 1 and 2 threads, bytes per triangle, and time per ray against size.
 void run_scaling_section(const BenchOptions& options);
 /// Section 5: RMSE against a converged image versus render time for the pixel sampling
-/// schemes and uniform against stratified area-light samples; writes CSV and SVG
-/// (section_sampling.cpp, docs/sampling-benchmarks.md).
+/// schemes and uniform against stratified area-light samples; writes CSV and SVG and
+/// prints every table of docs/sampling-benchmarks.md. With options.sampling_csv it
+/// renders nothing and prints the tables from that CSV (section_sampling.cpp).
 void run_sampling_section(const BenchOptions& options);
 
 }  // namespace raylab::bench
