@@ -187,6 +187,8 @@ void submit_if_dirty(Viewer& v) {
         s.interacting ? preview_factor(v.frames.last_full.milliseconds) : 1;
     v.frames.last_job = job.id;
     v.frames.last_job_preview = job.preview_factor > 1;
+    v.frames.submitted = std::chrono::steady_clock::now();
+    s.force_render = false;
     v.worker->submit(std::move(job));
     s.dirty = false;
 }
@@ -212,6 +214,9 @@ bool take_result(Viewer& v) {
     f.last_full = r->stats;
     f.difference = std::move(r->difference);
     ++f.full_frames;
+    f.on_screen_pending = r->job_id == f.last_job;
+    f.finished = r->finished;
+    f.taken = std::chrono::steady_clock::now();  // timed at the swap (frame_shown)
     const FrameStats& st = r->stats;
     std::string line = "rendered " + std::to_string(f.full.width) + "x" +
                        std::to_string(f.full.height) + " (" +
@@ -230,6 +235,40 @@ bool take_result(Viewer& v) {
                             "returned an invalid value");
     }
     return true;
+}
+
+namespace {
+
+double median(std::vector<double> x) {
+    std::sort(x.begin(), x.end());
+    return x.empty() ? 0.0 : x[x.size() / 2];
+}
+
+}  // namespace
+
+void frame_shown(Viewer& v) {
+    FrameState& f = v.frames;
+    if (!f.on_screen_pending) return;
+    f.on_screen_pending = false;
+    f.latency_ms = std::chrono::duration<double, std::milli>(
+                       std::chrono::steady_clock::now() - f.submitted)
+                       .count();
+    if (f.repeat <= 1 || repeat_done(v)) return;
+    f.repeat_render_ms.push_back(f.last_full.milliseconds);
+    f.repeat_latency_ms.push_back(f.latency_ms);
+    if (!repeat_done(v)) {
+        v.state.dirty = true;  // the same inputs again
+        v.state.force_render = true;
+        return;
+    }
+    v.log.add(
+        fmt("--repeat: %.0f full frames, render time median %.2f ms, change to "
+            "screen median %.2f ms",
+            double(f.repeat), median(f.repeat_render_ms), median(f.repeat_latency_ms)));
+}
+
+bool repeat_done(const Viewer& v) {
+    return int(v.frames.repeat_render_ms.size()) >= v.frames.repeat;
 }
 
 namespace {

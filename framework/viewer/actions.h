@@ -55,6 +55,12 @@ void submit_if_dirty(Viewer& v);
 /// Takes a finished frame from the worker; true when there was one.
 bool take_result(Viewer& v);
 
+/// After the swap that showed a new full frame: its latency (change to screen) and,
+/// with --repeat N, the next of N renders of the same frame (then the medians' log line).
+void frame_shown(Viewer& v);
+/// True when --repeat's renders are all done (always without --repeat).
+bool repeat_done(const Viewer& v);
+
 /// Probes the pinned or hovered pixel when it or the frame changed.
 void update_probes(Viewer& v);
 

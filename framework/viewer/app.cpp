@@ -77,8 +77,8 @@ void wait_for_events(Viewer& v) {
 bool scripted_run_done(Viewer& v, int& exit_code) {
     if (v.options.frames <= 0) return false;
     const bool settled = v.frames.have_full && !v.frames.shown_preview &&
-                         !v.state.dirty && !v.worker->busy() && !v.loading.valid() &&
-                         !v.grading->running();
+                         repeat_done(v) && !v.state.dirty && !v.worker->busy() &&
+                         !v.loading.valid() && !v.grading->running();
     if (v.frames.failed && !v.worker->busy()) {
         exit_code = 1;
         return true;
@@ -318,6 +318,7 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
         if (v->screenshot_requested) take_screenshot(*v);
         if (scripted_run_done(*v, exit_code)) v->quit = true;
         glfwSwapBuffers(v->window);
+        frame_shown(*v);
     }
     const int exit_status = exit_actions(*v);
     const int code = exit_code != 0 ? exit_code : exit_status;

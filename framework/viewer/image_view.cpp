@@ -2,6 +2,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -16,6 +17,7 @@ void refresh_texture(Viewer& v) {
     ViewerState& s = v.state;
     if (!s.retone) return;
     s.retone = false;
+    const auto start = std::chrono::steady_clock::now();
     const FrameState& f = v.frames;
     const bool heat = s.compare && s.show_difference && f.difference && !f.shown_preview;
     if (heat) {
@@ -24,12 +26,15 @@ void refresh_texture(Viewer& v) {
         v.texture_width = f.difference->width;
         v.texture_height = f.difference->height;
     } else if (f.shown.width > 0) {
-        upload_texture(v.texture, f.shown.width, f.shown.height,
-                       to_srgb8(f.shown, s.exposure));
+        v.tone.convert(f.shown, s.exposure, v.texture_bytes);
+        upload_texture(v.texture, f.shown.width, f.shown.height, v.texture_bytes);
         v.texture_width = f.shown.width;
         v.texture_height = f.shown.height;
     }
     v.texture_is_heat = heat;
+    v.frames.tone_ms = std::chrono::duration<double, std::milli>(
+                           std::chrono::steady_clock::now() - start)
+                           .count();
 }
 
 namespace {

@@ -117,6 +117,7 @@ void RenderWorker::run() {
             std::lock_guard<std::mutex> lock(mutex_);
             in_flight_ = false;
             // A cancelled frame is incomplete: keep the previous picture instead
+            result.finished = std::chrono::steady_clock::now();
             if (!result.stats.cancelled) finished_ = std::move(result);
         }
         wake_();
@@ -151,6 +152,7 @@ RenderResult RenderWorker::render_job(RenderJob& job) {
             if (early.stats.cancelled) return early;
             {
                 std::lock_guard<std::mutex> lock(mutex_);
+                early.finished = std::chrono::steady_clock::now();
                 finished_ = std::move(early);
             }
             wake_();

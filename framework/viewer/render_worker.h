@@ -8,6 +8,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -48,6 +49,7 @@ struct RenderResult {
     FrameStats stats;
     std::optional<Difference> difference;  ///< with compare, for full frames
     std::string error;                     ///< not empty: the frame failed, image empty
+    std::chrono::steady_clock::time_point finished;  ///< when the worker handed it over
 };
 
 class RenderWorker {

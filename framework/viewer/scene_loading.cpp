@@ -95,6 +95,7 @@ void init_viewer(Viewer& v, const Options& options, const ViewerOptions& viewer_
     s.view = s.scene.view;
     s.settings = options.settings;
     s.exposure = options.exposure;
+    v.frames.repeat = options.repeat;
     s.modules = options.modules;
     s.stubs = detect_stubs();  // before the worker runs student code
     s.image_scale = viewer_options.image_scale;

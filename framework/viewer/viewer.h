@@ -8,6 +8,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <future>
@@ -22,6 +23,7 @@
 #include "raylab/renderer.h"
 #include "raylab/scene.h"
 #include "render_worker.h"
+#include "tone_map.h"
 #include "view_file.h"
 #include "viewer_options.h"
 
@@ -50,6 +52,7 @@ struct ViewerState {
     bool dirty = true;            ///< the image is out of date: render again
     bool interacting = false;     ///< a value is being dragged: coarse previews
     bool retone = true;           ///< the texture is out of date: upload again
+    bool force_render = false;    ///< render even a frame the worker has (--repeat)
 };
 
 /// The panel's text fields and messages.
@@ -85,6 +88,14 @@ struct FrameState {
     int full_frames = 0;     ///< full frames received
     bool failed = false;     ///< the newest frame failed to render
     int settled_frames = 0;  ///< frames drawn with the finished image (--frames)
+    std::chrono::steady_clock::time_point submitted;  ///< when last_job was sent
+    std::chrono::steady_clock::time_point finished;   ///< when the worker handed it
+    std::chrono::steady_clock::time_point taken;      ///< when the main loop took it
+    bool on_screen_pending = false;  ///< a full frame is uploaded: time it at the swap
+    double latency_ms = 0.0;  ///< last full frame: change to screen (submit .. swap)
+    double tone_ms = 0.0;     ///< last tone mapping and texture upload (main thread)
+    int repeat = 1;           ///< --repeat N: render the same full frame N times
+    std::vector<double> repeat_render_ms, repeat_latency_ms;  ///< --repeat's times
 };
 
 /// What the inspector knows about one pixel.
@@ -151,7 +162,9 @@ struct Viewer {
     std::function<void()> wake;  ///< wakes the UI thread (posts an empty GLFW event)
     DebugView debug;             ///< the 3D debug view window
     unsigned texture = 0;        ///< GL texture of the shown image or heat map
-    int texture_width = 0;       ///< 0: nothing uploaded yet
+    ToneMapper tone;             ///< the shown image to sRGB bytes for the texture
+    std::vector<std::uint8_t> texture_bytes;  ///< the bytes last uploaded
+    int texture_width = 0;                    ///< 0: nothing uploaded yet
     int texture_height = 0;
     bool texture_is_heat = false;   ///< the texture shows the difference heat map
     float panel_width = 430.0f;     ///< at this frame's UI scale and window width
