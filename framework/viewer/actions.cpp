@@ -35,6 +35,21 @@ int preview_factor(double full_ms) {
     return std::clamp(static_cast<int>(std::ceil(std::sqrt(full_ms / 25.0))), 2, 8);
 }
 
+std::vector<int> coarse_levels(const FrameState& f, const RenderJob& job) {
+    if (job.preview_factor > 1 || !f.have_full) return {};
+    const int factor = preview_factor(f.last_full.milliseconds);
+    if (factor < 3) return {};  // the full frame comes within about 100 ms
+    std::vector<int> levels{factor};
+    if (factor >= 4) levels.push_back(2);
+    // A drag that just ended left a preview of these inputs: start finer than it
+    if (f.sent.preview_factor > 1 && same_inputs(f.sent, job)) {
+        levels.erase(std::remove_if(levels.begin(), levels.end(),
+                                    [&](int k) { return k >= f.sent.preview_factor; }),
+                     levels.end());
+    }
+    return levels;
+}
+
 void report_error(Viewer& v, const std::string& message) {
     v.panel.error = message;
     v.log.add("error: " + message);
@@ -91,7 +106,7 @@ bool save_image(Viewer& v, const std::string& path) {
         return false;
     }
     try {
-        write_image(path, v.frames.full, v.state.exposure);
+        write_image(path, *v.frames.full, v.state.exposure);
         v.log.add("saved image " + path);
         return true;
     } catch (const std::exception& e) {
@@ -110,7 +125,7 @@ ReportInput report_input(const Viewer& v) {
     in.exposure = v.state.exposure;
     in.modules = v.state.modules;
     in.stats = v.frames.last_full;
-    in.image = v.frames.have_full ? &v.frames.full : nullptr;
+    in.image = v.frames.have_full ? v.frames.full.get() : nullptr;
     in.grades = grades_text(v);
     in.log = v.log.text();
     return in;
@@ -185,6 +200,10 @@ void submit_if_dirty(Viewer& v) {
     job.interactive = s.interacting;
     job.preview_factor =
         s.interacting ? preview_factor(v.frames.last_full.milliseconds) : 1;
+    job.reuse = !s.force_render;
+    job.coarse = coarse_levels(v.frames, job);
+    v.frames.sent = job;
+    v.frames.sent.scene.reset();
     v.frames.last_job = job.id;
     v.frames.last_job_preview = job.preview_factor > 1;
     v.frames.submitted = std::chrono::steady_clock::now();
@@ -202,28 +221,43 @@ bool take_result(Viewer& v) {
         report_error(v, "render failed: " + r->error);
         return true;
     }
-    f.history_ms.push_back(static_cast<float>(r->stats.milliseconds));
+    f.history_ms.push_back(r->reused ? 0.0f : static_cast<float>(r->stats.milliseconds));
     if (f.history_ms.size() > 240) f.history_ms.erase(f.history_ms.begin());
     f.shown = std::move(r->image);
     f.shown_preview = r->preview;
+    f.shown_factor = r->factor;
+    f.shown_job = r->job_id;
     f.last = r->stats;
     v.state.retone = true;
+    f.new_image = true;
     if (r->preview) return true;
     f.full = f.shown;
     f.have_full = true;
     f.last_full = r->stats;
     f.difference = std::move(r->difference);
     ++f.full_frames;
+    ++(r->reused ? f.frames_reused : f.frames_rendered);
+    f.last_reused = r->reused;
+    if (!r->reused) {
+        f.tiles_changed = r->tiles_changed;
+        f.tiles_total = r->tiles_total;
+    }
     f.on_screen_pending = r->job_id == f.last_job;
     f.finished = r->finished;
     f.taken = std::chrono::steady_clock::now();  // timed at the swap (frame_shown)
     const FrameStats& st = r->stats;
-    std::string line = "rendered " + std::to_string(f.full.width) + "x" +
-                       std::to_string(f.full.height) + " (" +
-                       to_string(v.state.settings.mode) + ", shadows " +
-                       (v.state.settings.shadows ? "on" : "off") + ") in " +
-                       fmt("%.2f ms on %.0f threads: %.2f Mrays/s", st.milliseconds,
-                           st.threads, st.rays_per_second() * 1e-6);
+    const std::string what = std::to_string(f.full->width) + "x" +
+                             std::to_string(f.full->height) + " (" +
+                             to_string(v.state.settings.mode) + ", shadows " +
+                             (v.state.settings.shadows ? "on" : "off") + ")";
+    std::string line =
+        r->reused ? "reused " + what +
+                        fmt(": the same inputs as a kept frame, no render (it took "
+                            "%.2f ms)",
+                            st.milliseconds)
+                  : "rendered " + what + " in " +
+                        fmt("%.2f ms on %.0f threads: %.2f Mrays/s", st.milliseconds,
+                            st.threads, st.rays_per_second() * 1e-6);
     if (f.difference) {
         line += fmt("; vs reference: RMSE %.3g, max error %.3g", f.difference->rmse,
                     f.difference->max_error);
@@ -268,7 +302,8 @@ void frame_shown(Viewer& v) {
 }
 
 bool repeat_done(const Viewer& v) {
-    return int(v.frames.repeat_render_ms.size()) >= v.frames.repeat;
+    return v.frames.repeat <= 1 ||
+           int(v.frames.repeat_render_ms.size()) >= v.frames.repeat;
 }
 
 namespace {

@@ -74,4 +74,9 @@ std::string view_line(const View& view);
 /// already fast, else about sqrt(full_ms / 25), in 2..8.
 int preview_factor(double full_ms);
 
+/// The previews a full frame starts with when the last full frame took long (over
+/// about 100 ms): preview_factor's, then 2 when that is 4 or more; none finer than a
+/// preview of the same inputs the last job already made (a drag just ended).
+std::vector<int> coarse_levels(const FrameState& f, const RenderJob& job);
+
 }  // namespace raylab::viewer

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <string>
 
 #include "gl_image.h"
@@ -18,19 +19,22 @@ void refresh_texture(Viewer& v) {
     if (!s.retone) return;
     s.retone = false;
     const auto start = std::chrono::steady_clock::now();
-    const FrameState& f = v.frames;
+    FrameState& f = v.frames;
     const bool heat = s.compare && s.show_difference && f.difference && !f.shown_preview;
     if (heat) {
         upload_texture(v.texture, f.difference->width, f.difference->height,
                        f.difference->heat);
         v.texture_width = f.difference->width;
         v.texture_height = f.difference->height;
-    } else if (f.shown.width > 0) {
-        v.tone.convert(f.shown, s.exposure, v.texture_bytes);
-        upload_texture(v.texture, f.shown.width, f.shown.height, v.texture_bytes);
-        v.texture_width = f.shown.width;
-        v.texture_height = f.shown.height;
+    } else if (f.shown && f.shown->width > 0) {
+        v.tone.convert(*f.shown, s.exposure, v.texture_bytes);
+        upload_texture(v.texture, f.shown->width, f.shown->height, v.texture_bytes);
+        v.texture_width = f.shown->width;
+        v.texture_height = f.shown->height;
+        // No new frame: the exposure (or the heat map switch) changed, no render
+        if (!f.new_image) ++v.frames.retones;
     }
+    v.frames.new_image = false;
     v.texture_is_heat = heat;
     v.frames.tone_ms = std::chrono::duration<double, std::milli>(
                            std::chrono::steady_clock::now() - start)
@@ -116,8 +120,23 @@ void draw_image(Viewer& v) {
         draw->AddText(ImVec2(r.x + 10, r.y + 10), IM_COL32(200, 200, 200, 255),
                       "rendering ...");
     }
-    if (v.frames.shown_preview) {
-        draw->AddText(ImVec2(r.x + 6, r.y + 4), IM_COL32(255, 255, 255, 200), "preview");
+    // Never an old image as if it were current: a preview says so, and so does a full
+    // frame while the worker renders a change
+    const FrameState& f = v.frames;
+    const bool stale =
+        !f.shown_preview && f.shown_job != f.last_job && !f.failed && v.worker->busy();
+    if (f.shown_preview || stale) {
+        char label[64] = "out of date: rendering the change ...";
+        if (!stale && f.shown_factor > 1) {
+            std::snprintf(label, sizeof label, "preview 1/%d", f.shown_factor);
+        } else if (!stale) {
+            std::snprintf(label, sizeof label, "preview: 1 sample per pixel");
+        }
+        const ImVec2 size = ImGui::CalcTextSize(label);
+        draw->AddRectFilled(ImVec2(r.x + 3, r.y + 2),
+                            ImVec2(r.x + size.x + 9, r.y + size.y + 6),
+                            IM_COL32(0, 0, 0, 140));
+        draw->AddText(ImVec2(r.x + 6, r.y + 4), IM_COL32(255, 255, 255, 220), label);
     }
     stub_note(v, r);
     track_mouse(v, r);

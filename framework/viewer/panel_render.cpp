@@ -122,6 +122,36 @@ void stat_row(const char* name, unsigned long long value) {
     ImGui::Text("%llu", value);
 }
 
+// What the viewer did not redo: reused frames, tone mapping only, unchanged tiles
+void work_skipped(const Viewer& v) {
+    const FrameState& f = v.frames;
+    ImGui::TextUnformatted("Work skipped");
+    if (!ImGui::BeginTable("skipped", 2,
+                           ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp))
+        return;
+    stat_row("full frames rendered", static_cast<unsigned long long>(f.frames_rendered));
+    stat_row("reused: same inputs as a kept frame",
+             static_cast<unsigned long long>(f.frames_reused));
+    stat_row("tone mapping only (exposure, heat map)",
+             static_cast<unsigned long long>(f.retones));
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted("tiles changed since the last frame");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "16x16 tiles with any pixel different from the previous full frame. The\n"
+            "renderer still traces every tile; one that kept each tile's inputs could\n"
+            "skip the others.");
+    ImGui::TableNextColumn();
+    if (f.tiles_changed >= 0) {
+        ImGui::Text("%d of %d (%.0f%%)", f.tiles_changed, f.tiles_total,
+                    100.0 * f.tiles_changed / std::max(1, f.tiles_total));
+    } else {
+        ImGui::TextDisabled("-");
+    }
+    ImGui::EndTable();
+}
+
 }  // namespace
 
 void rendering_section(Viewer& v) {
@@ -185,11 +215,27 @@ void frame_overlay(Viewer& v) {
         return;
     }
     ImGui::BeginGroup();
-    ImGui::Text("%.2f ms  %s %dx%d%s", f.last.milliseconds,
-                f.shown_preview ? "preview" : "full", f.shown.width, f.shown.height,
-                v.worker->busy() ? "  (rendering)" : "");
-    ImGui::Text("%.2f Mrays/s on %d threads", f.last.rays_per_second() * 1e-6,
-                f.last.threads);
+    const char* busy = v.worker->busy() ? "  (rendering)" : "";
+    if (f.shown_preview && f.shown_factor > 1) {
+        ImGui::Text("%.2f ms  preview 1/%d, %dx%d%s", f.last.milliseconds, f.shown_factor,
+                    f.shown->width, f.shown->height, busy);
+    } else if (f.shown_preview) {
+        ImGui::Text("%.2f ms  preview (1 sample) %dx%d%s", f.last.milliseconds,
+                    f.shown->width, f.shown->height, busy);
+    } else if (f.last_reused) {
+        ImGui::Text("no render: full %dx%d reused (same inputs as a kept frame)%s",
+                    f.shown->width, f.shown->height, busy);
+    } else {
+        ImGui::Text("%.2f ms  full %dx%d, on screen %.1f ms after the change%s",
+                    f.last.milliseconds, f.shown->width, f.shown->height, f.latency_ms,
+                    busy);
+    }
+    if (f.last_reused && !f.shown_preview) {
+        ImGui::Text("no rays cast (the kept frame took %.2f ms)", f.last.milliseconds);
+    } else {
+        ImGui::Text("%.2f Mrays/s on %d threads", f.last.rays_per_second() * 1e-6,
+                    f.last.threads);
+    }
     ImGui::EndGroup();
     ImGui::SameLine();
     const float top = *std::max_element(f.history_ms.begin(), f.history_ms.end());
@@ -208,9 +254,25 @@ void stats_section(Viewer& v) {
         return;
     }
     const FrameStats& st = f.last;
-    ImGui::Text("last frame: %.2f ms, %s %dx%d", st.milliseconds,
-                f.shown_preview ? "preview" : "full", f.shown.width, f.shown.height);
-    if (f.have_full) ImGui::Text("last full frame: %.2f ms", f.last_full.milliseconds);
+    const bool reused = f.last_reused && !f.shown_preview;
+    if (reused) {
+        ImGui::Text("last frame: reused, full %dx%d", f.shown->width, f.shown->height);
+    } else {
+        ImGui::Text("last frame: %.2f ms, %s %dx%d", st.milliseconds,
+                    f.shown_preview ? "preview" : "full", f.shown->width,
+                    f.shown->height);
+    }
+    if (f.have_full) {
+        ImGui::TextWrapped(
+            "last full frame: %s %.2f ms; on screen %.1f ms after the change (tone "
+            "mapping and texture upload %.1f ms)",
+            f.last_reused ? "reused, its render took" : "render",
+            f.last_full.milliseconds, f.latency_ms, f.tone_ms);
+    }
+    if (reused)
+        ImGui::TextWrapped(
+            "No ray was cast for this frame: its inputs equal a kept frame's. The "
+            "numbers below are that frame's.");
     ImGui::Text("%.2f Mrays/s on %d threads", st.rays_per_second() * 1e-6, st.threads);
     if (ImGui::BeginTable("stats", 2,
                           ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
@@ -222,6 +284,7 @@ void stats_section(Viewer& v) {
         stat_row("BVH nodes visited", st.bvh_nodes);
         ImGui::EndTable();
     }
+    work_skipped(v);
     if (st.non_finite_pixels > 0) {
         ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1.0f), "%llu NaN/Inf pixels (black)",
                            static_cast<unsigned long long>(st.non_finite_pixels));

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "raylab/error.h"
 
@@ -124,50 +125,153 @@ void RenderWorker::run() {
     }
 }
 
+namespace {
+
+// The settings of a preview at factor: width / factor x height / factor, one sample
+RenderSettings preview_settings(const RenderSettings& full, int factor) {
+    RenderSettings s = first_pass(full);
+    s.width = std::max(1, full.width / factor);
+    s.height = std::max(1, full.height / factor);
+    return s;
+}
+
+// The tiles of a that differ from b in any pixel (same size), in the renderer's 16 x 16
+// tiles
+int changed_tiles(const Image& a, const Image& b, int& total) {
+    constexpr int kTile = 16;
+    const int tiles_x = (a.width + kTile - 1) / kTile;
+    const int tiles_y = (a.height + kTile - 1) / kTile;
+    total = tiles_x * tiles_y;
+    std::vector<char> changed(static_cast<size_t>(total), 0);
+    for (int j = 0; j < a.height; ++j) {
+        const Vec3* ra = &a.pixels[size_t(j) * size_t(a.width)];
+        const Vec3* rb = &b.pixels[size_t(j) * size_t(b.width)];
+        char* row = &changed[size_t(j / kTile) * size_t(tiles_x)];
+        for (int tx = 0; tx < tiles_x; ++tx) {
+            if (row[tx]) continue;
+            const int i0 = tx * kTile, n = std::min(kTile, a.width - i0);
+            row[tx] = std::memcmp(ra + i0, rb + i0, sizeof(Vec3) * size_t(n)) != 0;
+        }
+    }
+    return int(std::count(changed.begin(), changed.end(), 1));
+}
+
+constexpr size_t kKeptFrames = 6;         // the full frames the worker keeps
+constexpr size_t kKeptBytes = 96u << 20;  // and at most this much of them (1080p: 3)
+
+}  // namespace
+
+bool same_inputs(const RenderJob& a, const RenderJob& b) {
+    return same_frame(a, b) && a.settings.threads == b.settings.threads &&
+           a.modules.impl == b.modules.impl && a.show_samples == b.show_samples;
+}
+
+const KeptFrame* RenderWorker::find_kept(const RenderJob& job) const {
+    for (const KeptFrame& k : kept_) {
+        if (same_inputs(k.job, job)) return &k;
+    }
+    return nullptr;
+}
+
+void RenderWorker::keep(const RenderJob& job, std::shared_ptr<const Image> image,
+                        const FrameStats& stats) {
+    KeptFrame frame{job, std::move(image), stats};
+    frame.job.scene.reset();
+    kept_.insert(kept_.begin(), std::move(frame));
+    // Oldest out first, above the count or the bytes (the newest always stays)
+    size_t bytes = 0, n = 0;
+    while (n < kept_.size() && n < kKeptFrames) {
+        bytes += kept_[n].image->pixels.size() * sizeof(Vec3);
+        if (n > 0 && bytes > kKeptBytes) break;
+        ++n;
+    }
+    kept_.resize(n);
+}
+
+void RenderWorker::post(RenderResult result) {
+    result.finished = std::chrono::steady_clock::now();
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        finished_ = std::move(result);
+    }
+    wake_();
+}
+
 RenderResult RenderWorker::render_job(RenderJob& job) {
     RenderResult result;
     result.job_id = job.id;
     result.preview = job.preview_factor > 1;
+    result.factor = std::max(1, job.preview_factor);
     try {
         if (job.scene) {
             scene_ = std::move(*job.scene);
             job.scene.reset();
             scene_version_ = job.scene_version;
+            kept_.clear();  // (the version tells scenes apart; this frees memory early)
         }
         scene_.lights = job.lights;
         scene_.ambient = job.ambient;
         RenderSettings settings = job.settings;
-        settings.width = std::max(1, settings.width / job.preview_factor);
-        settings.height = std::max(1, settings.height / job.preview_factor);
         settings.cancel = &cancel_;
         const ModuleTable modules = ModuleTable::make(job.modules);
-        if (result.preview) settings = first_pass(settings);
-        if (!result.preview && sampled(settings)) {
-            // Progressive: one sample everywhere first, shown while the rest renders
-            RenderResult early;
-            early.job_id = job.id;
-            early.preview = true;
-            early.stats =
-                render(scene_, job.view, first_pass(settings), modules, early.image);
-            if (early.stats.cancelled) return early;
-            {
-                std::lock_guard<std::mutex> lock(mutex_);
-                early.finished = std::chrono::steady_clock::now();
-                finished_ = std::move(early);
-            }
-            wake_();
+        auto image = std::make_shared<Image>();
+        if (result.preview) {
+            result.stats =
+                render(scene_, job.view, preview_settings(settings, result.factor),
+                       modules, *image);
+            result.image = std::move(image);
+            return result;
         }
-        std::vector<std::uint16_t> samples;
-        if (job.show_samples) settings.samples_map = &samples;
-        result.stats = render(scene_, job.view, settings, modules, result.image);
-        if (job.show_samples && !result.stats.cancelled)
-            result.image =
-                heat_map(samples, settings.width, settings.height, settings.spp + 1);
-        if (job.compare && !result.preview && !result.stats.cancelled)
-            render_reference(job, settings, result);
+        if (const KeptFrame* kept = job.reuse ? find_kept(job) : nullptr) {
+            // The same inputs as a kept frame: no render at all
+            result.image = kept->image;
+            result.stats = kept->stats;
+            result.reused = true;
+        } else {
+            // A slow frame starts coarse: previews, coarsest first
+            for (const int factor : job.coarse) {
+                RenderResult early;
+                early.job_id = job.id;
+                early.preview = true;
+                early.factor = factor;
+                auto coarse = std::make_shared<Image>();
+                early.stats = render(scene_, job.view, preview_settings(settings, factor),
+                                     modules, *coarse);
+                if (early.stats.cancelled) return early;
+                early.image = std::move(coarse);
+                post(std::move(early));
+            }
+            if (sampled(settings)) {
+                // Progressive: one sample everywhere first, shown while the rest renders
+                RenderResult early;
+                early.job_id = job.id;
+                early.preview = true;
+                auto first = std::make_shared<Image>();
+                early.stats =
+                    render(scene_, job.view, first_pass(settings), modules, *first);
+                if (early.stats.cancelled) return early;
+                early.image = std::move(first);
+                post(std::move(early));
+            }
+            std::vector<std::uint16_t> samples;
+            if (job.show_samples) settings.samples_map = &samples;
+            result.stats = render(scene_, job.view, settings, modules, *image);
+            if (result.stats.cancelled) return result;
+            if (job.show_samples)
+                *image =
+                    heat_map(samples, settings.width, settings.height, settings.spp + 1);
+            if (previous_ && previous_->width == image->width &&
+                previous_->height == image->height)
+                result.tiles_changed =
+                    changed_tiles(*image, *previous_, result.tiles_total);
+            result.image = std::move(image);
+            keep(job, result.image, result.stats);
+        }
+        previous_ = result.image;
+        if (job.compare) render_reference(job, job.settings, result);
     } catch (const std::exception& e) {
         result.error = e.what();
-        result.image = Image();
+        result.image.reset();
     }
     return result;
 }
@@ -177,21 +281,27 @@ void RenderWorker::render_reference(const RenderJob& job, const RenderSettings& 
     const ModuleSelection all = ModuleSelection::all(Impl::reference);
     if (job.modules.impl == all.impl) {
         // Nothing to compare: the frame already is the reference
-        result.difference = compare_images(result.image, result.image);
+        result.difference = compare_images(*result.image, *result.image);
         return;
     }
-    if (!reference_key_ || !same_frame(*reference_key_, job)) {
+    // The reference frame is a frame like any other: kept, and found again
+    RenderJob reference = job;
+    reference.scene.reset();
+    reference.modules = all;
+    reference.show_samples = false;
+    if (!find_kept(reference)) {
+        RenderSettings s = settings;
+        s.cancel = &cancel_;
+        auto image = std::make_shared<Image>();
         const FrameStats stats =
-            render(scene_, job.view, settings, ModuleTable::make(all), reference_);
+            render(scene_, job.view, s, ModuleTable::make(all), *image);
         if (stats.cancelled) {
-            reference_key_.reset();
             result.stats.cancelled = true;
             return;
         }
-        reference_key_ = job;
-        reference_key_->scene.reset();
+        keep(reference, std::move(image), stats);
     }
-    result.difference = compare_images(result.image, reference_);
+    result.difference = compare_images(*result.image, *find_kept(reference)->image);
 }
 
 }  // namespace raylab::viewer

@@ -5,6 +5,11 @@
 // sleeps in glfwWaitEvents draws it). A new job cancels a settled render in flight (the
 // renderer stops after its tiles in flight); an interactive one (a preview while a value
 // is dragged) is allowed to finish, so that a continuous drag still shows pictures.
+//
+// Work that is not needed is skipped: the worker keeps its last few full frames, and a
+// job with the same inputs as one of them (a module switched back, shadows off and on
+// again, compare turned off) gets that frame back without a render. A slow frame can
+// start coarse (RenderJob::coarse) and refine.
 #pragma once
 
 #include <atomic>
@@ -40,16 +45,36 @@ struct RenderJob {
     bool interactive = false;  ///< a value is being dragged: never cancelled (see above)
     bool compare = false;      ///< also render the full reference and compare (full only)
     bool show_samples = false;  ///< show the samples each pixel took (heat map)
+    bool reuse = true;  ///< a kept frame with the same inputs may answer (not --repeat)
+    /// Before the full frame, previews at these factors, coarsest first (e.g. 8, 2).
+    std::vector<int> coarse;
 };
+
+/// True when jobs a and b give the same image: scene, lights, view, settings (threads
+/// too), modules and heat map. preview_factor, compare and the flags do not count.
+bool same_inputs(const RenderJob& a, const RenderJob& b);
 
 struct RenderResult {
     std::uint64_t job_id = 0;
     bool preview = false;
-    Image image;
+    int factor = 1;       ///< a preview's factor (1: full size)
+    bool reused = false;  ///< a kept frame with the same inputs, not rendered again
+    /// Full frames: the 16 x 16 tiles that differ from the previous full frame of the
+    /// same size (-1: none to compare with), of tiles_total
+    int tiles_changed = -1;
+    int tiles_total = 0;
+    std::shared_ptr<const Image> image;  ///< shared with the worker's kept frames
     FrameStats stats;
     std::optional<Difference> difference;  ///< with compare, for full frames
     std::string error;                     ///< not empty: the frame failed, image empty
     std::chrono::steady_clock::time_point finished;  ///< when the worker handed it over
+};
+
+/// A full frame the worker keeps, with the job that made it (its scene pointer empty).
+struct KeptFrame {
+    RenderJob job;
+    std::shared_ptr<const Image> image;
+    FrameStats stats;
 };
 
 class RenderWorker {
@@ -71,6 +96,10 @@ class RenderWorker {
     RenderResult render_job(RenderJob& job);
     void render_reference(const RenderJob& job, const RenderSettings& settings,
                           RenderResult& result);
+    void post(RenderResult result);  // hands over a preview while the job goes on
+    const KeptFrame* find_kept(const RenderJob& job) const;
+    void keep(const RenderJob& job, std::shared_ptr<const Image> image,
+              const FrameStats& stats);
 
     std::function<void()> wake_;
     mutable std::mutex mutex_;
@@ -85,9 +114,9 @@ class RenderWorker {
     // Owned by the worker thread
     Scene scene_;
     std::uint64_t scene_version_ = 0;
-    Image reference_;                         // the cached full reference image
-    std::optional<RenderJob> reference_key_;  // the frame it shows
-    std::thread thread_;  // last: starts after the members above exist
+    std::vector<KeptFrame> kept_;            // the last full frames, newest first
+    std::shared_ptr<const Image> previous_;  // the last full frame (tiles_changed)
+    std::thread thread_;                     // last: starts after the members above exist
 };
 
 }  // namespace raylab::viewer

@@ -74,9 +74,11 @@ struct PanelState {
 
 /// The frames the renderer sent back.
 struct FrameState {
-    Image shown;  ///< newest image, preview or full
+    std::shared_ptr<const Image> shown;  ///< newest image, preview or full
     bool shown_preview = false;
-    Image full;  ///< newest full-size image (save, report)
+    int shown_factor = 1;         ///< a preview's factor (1: full size)
+    std::uint64_t shown_job = 0;  ///< the job shown belongs to (< last_job: out of date)
+    std::shared_ptr<const Image> full;  ///< newest full-size image (save, report)
     bool have_full = false;
     FrameStats last;                ///< of shown
     FrameStats last_full;           ///< of full
@@ -84,8 +86,16 @@ struct FrameState {
     std::optional<Difference> difference;
     std::uint64_t next_job = 1;
     std::uint64_t last_job = 0;  ///< the newest job submitted
+    RenderJob sent;              ///< that job (without its scene)
     bool last_job_preview = false;
-    int full_frames = 0;     ///< full frames received
+    int full_frames = 0;  ///< full frames received
+    // What the viewer did not do (frame statistics): frames with the same inputs as a
+    // kept one, exposure changes that only tone-mapped again, and the tiles of the last
+    // full frame that changed (-1: nothing to compare with)
+    int frames_rendered = 0, frames_reused = 0, retones = 0;
+    bool last_reused = false;
+    int tiles_changed = -1, tiles_total = 0;
+    bool new_image = false;  ///< take_result brought an image the texture lacks
     bool failed = false;     ///< the newest frame failed to render
     int settled_frames = 0;  ///< frames drawn with the finished image (--frames)
     std::chrono::steady_clock::time_point submitted;  ///< when last_job was sent

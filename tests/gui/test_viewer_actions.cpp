@@ -193,7 +193,7 @@ TEST_SUITE("viewer") {
         Image expected;
         render(scene, scene.view, options.settings, ModuleTable::make(options.modules),
                expected);
-        CHECK(h.v.frames.full.pixels == expected.pixels);
+        CHECK(h.v.frames.full->pixels == expected.pixels);
 
         const std::string dir = temp_dir("report") + "/report";
         CHECK(save_report(h.v, dir));
@@ -255,7 +255,7 @@ TEST_SUITE("viewer") {
         CHECK(h.v.state.scene_source == path);
         h.render();  // the worker receives the new geometry with the job
         CHECK(h.v.frames.have_full);
-        CHECK(h.v.frames.full.width == 16);  // (stubs in a student release cast no rays)
+        CHECK(h.v.frames.full->width == 16);  // (stubs in a student release cast no rays)
     }
 
     TEST_CASE("a preview renders at a fraction of the size while a value is dragged") {
@@ -267,7 +267,7 @@ TEST_SUITE("viewer") {
         h.v.state.interacting = true;
         h.render();
         CHECK(h.v.frames.shown_preview);
-        CHECK(h.v.frames.shown.width == 32);
+        CHECK(h.v.frames.shown->width == 32);
         CHECK_FALSE(h.v.frames.have_full);
     }
 }
@@ -394,5 +394,120 @@ TEST_SUITE("viewer") {
         settings.light_size = 0.0f;
         CHECK_FALSE(probe_pixel(box, box.view, settings, ref, 240, 225).lights[0].area);
 #endif
+    }
+}
+
+TEST_SUITE("viewer") {
+    // (These two need the reference: in a student release the stubs draw black frames)
+    TEST_CASE("a frame with the inputs of a kept one is reused, not rendered again" *
+              doctest::skip(!reference_available())) {
+        Headless h(parse({"--width", "48", "--height", "36", "--reference", "all"}));
+        h.render();
+        REQUIRE(h.v.frames.have_full);
+        const Image first = *h.v.frames.full;
+        CHECK(h.v.frames.frames_rendered == 1);
+
+        // Shadows off: a new frame; on again: the first frame's inputs, no render
+        h.v.state.settings.shadows = false;
+        h.v.state.dirty = true;
+        h.render();
+        CHECK(h.v.frames.frames_rendered == 2);
+        CHECK(h.v.frames.full->pixels != first.pixels);
+        h.v.state.settings.shadows = true;
+        h.v.state.dirty = true;
+        h.render();
+        CHECK(h.v.frames.frames_rendered == 2);
+        CHECK(h.v.frames.frames_reused == 1);
+        CHECK(h.v.frames.last_reused);
+        CHECK(h.v.frames.full->pixels == first.pixels);
+        CHECK(h.v.log.text().find("reused 48x36") != std::string::npos);
+
+        // --repeat forces a render of the same inputs: every tile as before
+        h.v.state.force_render = true;
+        h.v.state.dirty = true;
+        h.render();
+        CHECK(h.v.frames.frames_rendered == 3);
+        CHECK_FALSE(h.v.frames.last_reused);
+        CHECK(h.v.frames.full->pixels == first.pixels);
+        CHECK(h.v.frames.tiles_total == 3 * 3);  // 48x36 in 16x16 tiles
+        CHECK(h.v.frames.tiles_changed == 0);
+
+        // A light moved: the frame changes, and the statistics count changed tiles
+        h.v.state.scene.lights[0].p.x += 0.2f;
+        h.v.state.dirty = true;
+        h.render();
+        CHECK(h.v.frames.frames_rendered == 4);
+        CHECK(h.v.frames.tiles_changed > 0);
+        CHECK(h.v.frames.tiles_changed <= 9);
+    }
+
+    TEST_CASE("compare turned on reuses the frame and renders only the reference" *
+              doctest::skip(!reference_available())) {
+        // Reference modules everywhere: the frame is the reference, so the difference
+        // is zero; the compare switch alone changes no input of the image
+        Headless h(parse({"--width", "32", "--height", "24", "--reference", "all"}));
+        h.render();
+        h.v.state.compare = true;
+        h.v.state.dirty = true;
+        h.render();
+        CHECK(h.v.frames.last_reused);
+        REQUIRE(h.v.frames.difference);
+        CHECK(h.v.frames.difference->rmse == 0.0);
+        h.v.state.compare = false;
+        h.v.state.dirty = true;
+        h.render();
+        CHECK(h.v.frames.frames_rendered == 1);
+        CHECK(h.v.frames.frames_reused == 2);
+    }
+
+    TEST_CASE("a slow frame starts coarse and refines: 1/f, then 1/2, then full") {
+        FrameState f;
+        RenderJob job;
+        CHECK(coarse_levels(f, job).empty());  // no full frame yet: nothing to go by
+        f.have_full = true;
+        f.last_full.milliseconds = 60.0;  // fast enough: the full frame at once
+        CHECK(coarse_levels(f, job).empty());
+        f.last_full.milliseconds = 1000.0;  // preview_factor 7 (7 x 7 x 25 ms > 1 s)
+        CHECK(coarse_levels(f, job) == std::vector<int>{7, 2});
+        f.last_full.milliseconds = 150.0;  // factor 3: one preview
+        CHECK(coarse_levels(f, job) == std::vector<int>{3});
+        // A drag ended on these inputs with a 1/7 preview: only 1/2 is left to show
+        f.last_full.milliseconds = 1000.0;
+        f.sent = job;
+        f.sent.preview_factor = 7;
+        CHECK(coarse_levels(f, job) == std::vector<int>{2});
+        f.sent.view.fov += 1.0f;  // another view: all levels again
+        CHECK(coarse_levels(f, job) == std::vector<int>{7, 2});
+
+        // The worker shows them coarsest first and ends with the full frame of render()
+        const Options options = parse({"--width", "64", "--height", "48"});
+        Headless h(options);
+        h.render();
+        h.v.frames.last_full.milliseconds = 1000.0;  // as if the full frame took 1 s
+        h.v.state.view.eye.x += 0.1f;
+        h.v.state.dirty = true;
+        submit_if_dirty(h.v);
+        int last_factor = 1000;
+        for (;;) {
+            {
+                std::unique_lock<std::mutex> lock(h.mutex);
+                h.cv.wait(lock, [&] { return h.wakes > 0; });
+                h.wakes = 0;
+            }
+            if (take_result(h.v)) {
+                INFO("factor " << h.v.frames.shown_factor << " after " << last_factor);
+                CHECK(h.v.frames.shown_factor <= last_factor);  // never coarser again
+                CHECK(h.v.frames.shown_job == h.v.frames.last_job);
+                last_factor = h.v.frames.shown_factor;
+                if (!h.v.frames.shown_preview) break;
+                CHECK(h.v.frames.shown->width == 64 / h.v.frames.shown_factor);
+            }
+        }
+        CHECK(h.v.frames.frames_rendered == 2);
+        Image expected;
+        const Scene scene = make_scene(options);
+        render(scene, h.v.state.view, options.settings,
+               ModuleTable::make(options.modules), expected);
+        CHECK(h.v.frames.full->pixels == expected.pixels);
     }
 }
