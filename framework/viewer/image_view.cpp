@@ -121,10 +121,10 @@ void draw_image(Viewer& v) {
                       "rendering ...");
     }
     // Never an old image as if it were current: a preview says so, and so does a full
-    // frame while the worker renders a change
+    // frame while the worker renders a change (not during a drag: the picture moves)
     const FrameState& f = v.frames;
-    const bool stale =
-        !f.shown_preview && f.shown_job != f.last_job && !f.failed && v.worker->busy();
+    const bool stale = !f.shown_preview && f.shown_job != f.last_job && !f.failed &&
+                       !v.state.interacting && v.worker->busy();
     if (f.shown_preview || stale) {
         char label[64] = "out of date: rendering the change ...";
         if (!stale && f.shown_factor > 1) {

@@ -116,6 +116,8 @@ std::string viewer_options_help() {
   --load-view FILE      camera and lights from a view file (see docs/viewer.md)
 Scripted runs (CI):
   --frames N            quit after N frames of the finished full-size image
+  --repeat N            render the full frame N times (no reuse), log the median
+                        render time and time from the change to the screen
   --screenshot FILE     write the window as FILE.png at the last frame (implies
                         --frames 3 unless given)
   --save-image FILE     write the rendered image (.png or .pfm) at exit

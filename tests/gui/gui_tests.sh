@@ -15,6 +15,8 @@
 #   inspector    a pinned pixel in the box's shadow: with the shadow stub the student's
 #                side is lit, the reference's shadow ray is blocked by a named triangle
 #   debug-view   the 3D debug view draws the scene and the pinned pixel's rays
+#   repeat       --repeat 3 renders the same full frame three times (the kept frame
+#                does not answer) and logs the medians; the image is raylab-render's
 #   no-display   without DISPLAY: exit code 2 and a one-line message, no crash
 # Exit 77 (ctest: skipped) when xvfb-run or xdotool is missing.
 set -u
@@ -169,6 +171,21 @@ debug-view)
     cat out.txt
     # 30 triangles; 3 light-cross lines + camera ray + normal + one shadow ray
     grep -q "debug view: 30 triangles, 6 lines" out.txt || fail "wrong debug view content"
+    ;;
+repeat)
+    need xvfb-run
+    "$render" "${flags[@]}" --output render.png > render.txt ||
+        fail "raylab-render failed"
+    xvfb "$viewer" "${flags[@]}" --repeat 3 --frames 1 --save-image saved.png \
+        > out.txt 2>&1 || { cat out.txt; fail "the viewer failed"; }
+    cat out.txt
+    [ "$(grep -c '^rendered 320x240' out.txt)" = 3 ] ||
+        fail "not three renders of the frame"
+    ! grep -q '^reused' out.txt || fail "--repeat reused a kept frame"
+    grep -q -- '--repeat: 3 full frames, render time median [0-9.]* ms, change to screen' \
+        out.txt || fail "no --repeat medians in the log"
+    "$png_diff" saved.png render.png --tolerance 0 ||
+        fail "saved image differs from raylab-render"
     ;;
 no-display)
     env -u DISPLAY -u WAYLAND_DISPLAY "$viewer" --frames 1 > out.txt 2> err.txt
