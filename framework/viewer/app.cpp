@@ -48,11 +48,15 @@ GLFWwindow* open_window(const ViewerOptions& o, const std::string& scene) {
 
 // Sleep until something happens: a key held needs a steady frame rate; the render
 // worker and the graders wake us with an empty event when they have news, so a frame in
-// flight costs no UI frames; nothing at all sleeps (idle CPU near zero)
+// flight costs no UI frames (a scripted run too: with Mesa's software GL a frame of the
+// window costs as much CPU as a tenth of a 640x480 render); nothing at all sleeps (idle
+// CPU near zero)
 void wait_for_events(Viewer& v) {
     if (v.options.frames > 0) {
-        if (v.worker->busy() || v.grading->running()) {
-            glfwWaitEventsTimeout(0.05);
+        if (v.loading.valid()) {
+            glfwWaitEventsTimeout(0.25);
+        } else if (v.worker->busy() || v.grading->running()) {
+            glfwWaitEventsTimeout(1.0);  // they wake us; the timeout is a safety net
         } else {
             glfwPollEvents();
         }
