@@ -15,6 +15,8 @@
 #   inspector    a pinned pixel in the box's shadow: with the shadow stub the student's
 #                side is lit, the reference's shadow ray is blocked by a named triangle
 #   debug-view   the 3D debug view draws the scene and the pinned pixel's rays
+#   skip         shadows off, then on again: the second is the kept first frame (no
+#                render); an exposure drag tone-maps again and renders nothing
 #   repeat       --repeat 3 renders the same full frame three times (the kept frame
 #                does not answer) and logs the medians; the image is raylab-render's
 #   no-display   without DISPLAY: exit code 2 and a one-line message, no crash
@@ -171,6 +173,29 @@ debug-view)
     cat out.txt
     # 30 triangles; 3 light-cross lines + camera ray + normal + one shadow ray
     grep -q "debug view: 30 triangles, 6 lines" out.txt || fail "wrong debug view content"
+    ;;
+skip)
+    need xvfb-run; need xdotool
+    # The shadows checkbox and the exposure slider of the Rendering section (1280x800,
+    # UI scale 1); each step waits for the log line it causes
+    wait_for() { echo 'for _ in $(seq 100); do grep -q "'"$1"'" out.txt && break; sleep 0.1; done'; }
+    drive "xdotool mousemove --window \"\$wid\" 17 535 click 1
+           $(wait_for 'shadows off')
+           xdotool mousemove --window \"\$wid\" 17 535 click 1
+           $(wait_for '^reused')
+           xdotool mousemove --window \"\$wid\" 133 558 mousedown 1; sleep 0.1
+           xdotool mousemove --window \"\$wid\" 200 558; sleep 0.2; xdotool mouseup 1
+           sleep 0.5" --width 160 --height 120 --report report ||
+        { cat out.txt; fail "the viewer failed"; }
+    cat out.txt
+    [ "$(grep -c '^rendered' out.txt)" = 2 ] || fail "not two renders (on, off)"
+    grep -q '^rendered 160x120 (lambert, shadows off)' out.txt || fail "no shadows off"
+    grep -q '^reused 160x120 (lambert, shadows on)' out.txt ||
+        fail "shadows on again was not the kept frame"
+    # (a job for the exposure would be answered by the kept frame: one more "reused")
+    [ "$(grep -c '^reused' out.txt)" = 1 ] || fail "the exposure drag sent a job"
+    awk '$1 == "exposure:" { exit !($2 > 0.5) }' report/settings.txt ||
+        fail "the exposure drag did not change the exposure"
     ;;
 repeat)
     need xvfb-run
