@@ -197,6 +197,49 @@ void RenderWorker::post(RenderResult result) {
     wake_();
 }
 
+bool RenderWorker::preview(const RenderJob& job, const RenderSettings& settings,
+                           const ModuleTable& modules, int factor) {
+    RenderResult early;
+    early.job_id = job.id;
+    early.preview = true;
+    early.factor = factor;
+    auto image = std::make_shared<Image>();
+    early.stats =
+        render(scene_, job.view, preview_settings(settings, factor), modules, *image);
+    if (early.stats.cancelled) return false;
+    early.image = std::move(image);
+    post(std::move(early));
+    return true;
+}
+
+void RenderWorker::render_full(const RenderJob& job, RenderSettings settings,
+                               const ModuleTable& modules, RenderResult& result) {
+    // A slow frame starts coarse, coarsest first; a sampled one with one sample per
+    // pixel at full size, shown while the rest renders
+    for (const int factor : job.coarse) {
+        if (!preview(job, settings, modules, factor)) {
+            result.stats.cancelled = true;
+            return;
+        }
+    }
+    if (sampled(settings) && !preview(job, settings, modules, 1)) {
+        result.stats.cancelled = true;
+        return;
+    }
+    std::vector<std::uint16_t> samples;
+    if (job.show_samples) settings.samples_map = &samples;
+    auto image = std::make_shared<Image>();
+    result.stats = render(scene_, job.view, settings, modules, *image);
+    if (result.stats.cancelled) return;
+    if (job.show_samples)
+        *image = heat_map(samples, settings.width, settings.height, settings.spp + 1);
+    if (previous_ && previous_->width == image->width &&
+        previous_->height == image->height)
+        result.tiles_changed = changed_tiles(*image, *previous_, result.tiles_total);
+    result.image = std::move(image);
+    keep(job, result.image, result.stats);
+}
+
 RenderResult RenderWorker::render_job(RenderJob& job) {
     RenderResult result;
     result.job_id = job.id;
@@ -214,8 +257,8 @@ RenderResult RenderWorker::render_job(RenderJob& job) {
         RenderSettings settings = job.settings;
         settings.cancel = &cancel_;
         const ModuleTable modules = ModuleTable::make(job.modules);
-        auto image = std::make_shared<Image>();
         if (result.preview) {
+            auto image = std::make_shared<Image>();
             result.stats =
                 render(scene_, job.view, preview_settings(settings, result.factor),
                        modules, *image);
@@ -228,44 +271,8 @@ RenderResult RenderWorker::render_job(RenderJob& job) {
             result.stats = kept->stats;
             result.reused = true;
         } else {
-            // A slow frame starts coarse: previews, coarsest first
-            for (const int factor : job.coarse) {
-                RenderResult early;
-                early.job_id = job.id;
-                early.preview = true;
-                early.factor = factor;
-                auto coarse = std::make_shared<Image>();
-                early.stats = render(scene_, job.view, preview_settings(settings, factor),
-                                     modules, *coarse);
-                if (early.stats.cancelled) return early;
-                early.image = std::move(coarse);
-                post(std::move(early));
-            }
-            if (sampled(settings)) {
-                // Progressive: one sample everywhere first, shown while the rest renders
-                RenderResult early;
-                early.job_id = job.id;
-                early.preview = true;
-                auto first = std::make_shared<Image>();
-                early.stats =
-                    render(scene_, job.view, first_pass(settings), modules, *first);
-                if (early.stats.cancelled) return early;
-                early.image = std::move(first);
-                post(std::move(early));
-            }
-            std::vector<std::uint16_t> samples;
-            if (job.show_samples) settings.samples_map = &samples;
-            result.stats = render(scene_, job.view, settings, modules, *image);
+            render_full(job, settings, modules, result);
             if (result.stats.cancelled) return result;
-            if (job.show_samples)
-                *image =
-                    heat_map(samples, settings.width, settings.height, settings.spp + 1);
-            if (previous_ && previous_->width == image->width &&
-                previous_->height == image->height)
-                result.tiles_changed =
-                    changed_tiles(*image, *previous_, result.tiles_total);
-            result.image = std::move(image);
-            keep(job, result.image, result.stats);
         }
         previous_ = result.image;
         if (job.compare) render_reference(job, job.settings, result);

@@ -97,6 +97,13 @@ class RenderWorker {
     void render_reference(const RenderJob& job, const RenderSettings& settings,
                           RenderResult& result);
     void post(RenderResult result);  // hands over a preview while the job goes on
+    // Renders job's preview at factor (1: full size, one sample) and posts it; false
+    // when a newer job cancelled it
+    bool preview(const RenderJob& job, const RenderSettings& settings,
+                 const ModuleTable& modules, int factor);
+    // The full frame with its previews first; result.stats.cancelled when cancelled
+    void render_full(const RenderJob& job, RenderSettings settings,
+                     const ModuleTable& modules, RenderResult& result);
     const KeptFrame* find_kept(const RenderJob& job) const;
     void keep(const RenderJob& job, std::shared_ptr<const Image> image,
               const FrameStats& stats);
