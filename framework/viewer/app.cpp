@@ -60,10 +60,18 @@ void wait_for_events(Viewer& v) {
         } else {
             glfwPollEvents();
         }
-    } else if (v.extra_frames > 0) {
-        glfwPollEvents();
     } else if (camera_keys_held(v)) {
         glfwWaitEventsTimeout(1.0 / 60.0);
+    } else if (v.extra_frames > 0) {
+        // ImGui settles over a frame or two. While the worker renders a settled change,
+        // it has the CPU first: its result wakes us and that frame settles ImGui too (a
+        // slow one: after 0.1 s). With Mesa's software GL a window frame costs about
+        // 9 ms of both cores, which a 40 ms render otherwise loses
+        if (v.worker->busy() && !v.state.interacting) {
+            glfwWaitEventsTimeout(0.1);
+        } else {
+            glfwPollEvents();
+        }
     } else if (v.loading.valid()) {
         glfwWaitEventsTimeout(0.25);  // a loading OBJ posts no event: look now and then
     } else {
