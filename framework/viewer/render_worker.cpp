@@ -18,6 +18,13 @@ bool same_lights(const std::vector<PointLight>& a, const std::vector<PointLight>
                       });
 }
 
+// A field added to these must be compared below, or a kept frame would answer for a job
+// that differs in it (sizes with 64-bit pointers)
+static_assert(sizeof(void*) != 8 || (sizeof(RenderSettings) == 80 && sizeof(View) == 40 &&
+                                     sizeof(PointLight) == 24),
+              "a new field in RenderSettings, View or PointLight: compare it in "
+              "same_frame (viewer/render_worker.cpp), then update these sizes");
+
 // True when the reference of job a also serves job b
 bool same_frame(const RenderJob& a, const RenderJob& b) {
     const RenderSettings &s = a.settings, &t = b.settings;
