@@ -229,7 +229,6 @@ bool take_result(Viewer& v) {
     f.shown_job = r->job_id;
     f.last = r->stats;
     v.state.retone = true;
-    f.new_image = true;
     if (r->preview) return true;
     f.full = f.shown;
     f.have_full = true;

@@ -18,7 +18,6 @@ void refresh_texture(Viewer& v) {
     ViewerState& s = v.state;
     if (!s.retone) return;
     s.retone = false;
-    const auto start = std::chrono::steady_clock::now();
     FrameState& f = v.frames;
     const bool heat = s.compare && s.show_difference && f.difference && !f.shown_preview;
     if (heat) {
@@ -27,18 +26,16 @@ void refresh_texture(Viewer& v) {
         v.texture_width = f.difference->width;
         v.texture_height = f.difference->height;
     } else if (f.shown && f.shown->width > 0) {
+        const auto start = std::chrono::steady_clock::now();
         v.tone.convert(*f.shown, s.exposure, v.texture_bytes);
         upload_texture(v.texture, f.shown->width, f.shown->height, v.texture_bytes);
         v.texture_width = f.shown->width;
         v.texture_height = f.shown->height;
-        // No new frame: the exposure (or the heat map switch) changed, no render
-        if (!f.new_image) ++v.frames.retones;
+        f.tone_ms = std::chrono::duration<double, std::milli>(
+                        std::chrono::steady_clock::now() - start)
+                        .count();
     }
-    v.frames.new_image = false;
     v.texture_is_heat = heat;
-    v.frames.tone_ms = std::chrono::duration<double, std::milli>(
-                           std::chrono::steady_clock::now() - start)
-                           .count();
 }
 
 namespace {

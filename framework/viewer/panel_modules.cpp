@@ -143,8 +143,10 @@ void compare_section(Viewer& v) {
         s.retone = true;
     }
     if (!s.compare) return;
-    if (ImGui::Checkbox("show the difference heat map", &s.show_difference))
-        s.retone = true;
+    if (ImGui::Checkbox("show the difference heat map", &s.show_difference)) {
+        s.retone = true;  // the texture only: no new render
+        ++v.frames.retones;
+    }
     const std::optional<Difference>& d = v.frames.difference;
     if (!d) {
         ImGui::TextDisabled("computed with the next full frame ...");

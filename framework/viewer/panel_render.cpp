@@ -171,8 +171,10 @@ void rendering_section(Viewer& v) {
         s.dirty = true;
     // The value beside the slider, not on it: a slider centred on 0 has its knob in the
     // middle, where ImGui draws the value text
-    if (ImGui::SliderFloat("##exposure", &s.exposure, -6.0f, 6.0f, ""))
+    if (ImGui::SliderFloat("##exposure", &s.exposure, -6.0f, 6.0f, "")) {
         s.retone = true;  // tone mapping only: no new render
+        ++v.frames.retones;
+    }
     ImGui::SameLine(0.0f, ImGui::GetStyle().ItemInnerSpacing.x);
     ImGui::Text("exposure %+.1f EV", double(s.exposure));
     sampling(v);

@@ -95,7 +95,6 @@ struct FrameState {
     int frames_rendered = 0, frames_reused = 0, retones = 0;
     bool last_reused = false;
     int tiles_changed = -1, tiles_total = 0;
-    bool new_image = false;  ///< take_result brought an image the texture lacks
     bool failed = false;     ///< the newest frame failed to render
     int settled_frames = 0;  ///< frames drawn with the finished image (--frames)
     std::chrono::steady_clock::time_point submitted;  ///< when last_job was sent
