@@ -69,6 +69,7 @@ constexpr int kTileSize = 16;
 struct alignas(64) Counters {  // one cache line each: no false sharing
     TraceCounters trace;
     std::uint64_t camera_rays = 0;
+    std::uint64_t camera_rays_reused = 0;
     std::uint64_t shadow_rays = 0;
     std::uint64_t backfacing = 0;
     std::uint64_t disabled = 0;
@@ -89,18 +90,21 @@ class PixelShader {
           occluder_(scene, modules, counters.trace),
           centre_(scene.bounds().centre()) {}
 
+    // The next tile's kept camera hits (CameraHits): reuse them in order, or keep them
+    void begin_tile(std::vector<CameraHits::Sample>* hits, bool reuse, bool keep) {
+        tile_hits_ = hits;
+        cursor_ = 0;
+        reuse_ = reuse;
+        keep_ = keep;
+    }
+
     Vec3 radiance(const Vec2& uv, std::optional<Hit>* hit_out = nullptr,
                   Ray* ray_out = nullptr) {
-        // Camera ray; the framework boundary normalises w (docs/style.md rule 9)
-        Ray ray = modules_.camera_ray(camera_, uv);
-        const float len = glm::length(ray.w);
-        if (!(len > 0.0f) || !std::isfinite(len) || !is_finite(ray.o))
-            return settings_.background;
-        ray.w /= len;
-        ++counters_.camera_rays;
         uv_ = uv;
+        Ray ray;
+        std::optional<Hit> hit;
+        if (!camera_hit(uv, ray, hit)) return settings_.background;
         if (ray_out) *ray_out = ray;
-        const std::optional<Hit> hit = scene_.closest_hit(modules_, ray, counters_.trace);
         if (hit_out) *hit_out = hit;
         if (!hit) return settings_.background;
         const Material& material = scene_.materials[hit->material];
@@ -118,6 +122,34 @@ class PixelShader {
     }
 
   private:
+    // The camera ray through uv and its closest hit: the kept one while the pixel loop
+    // asks for the same points in the same order, else cast (and kept when asked). False
+    // when the camera module's ray is not valid
+    bool camera_hit(const Vec2& uv, Ray& ray, std::optional<Hit>& hit) {
+        if (reuse_ && cursor_ < tile_hits_->size() && (*tile_hits_)[cursor_].uv == uv) {
+            const CameraHits::Sample& kept = (*tile_hits_)[cursor_++];
+            ++counters_.camera_rays_reused;
+            ray = kept.ray;
+            hit = kept.hit;
+            return kept.traced;
+        }
+        reuse_ = false;  // out of step: the rest of the tile is cast
+        const bool traced = cast_camera_ray(uv, ray, hit);
+        if (keep_) tile_hits_->push_back({uv, ray, traced, hit});
+        return traced;
+    }
+
+    bool cast_camera_ray(const Vec2& uv, Ray& ray, std::optional<Hit>& hit) {
+        // The framework boundary normalises w (docs/style.md rule 9)
+        ray = modules_.camera_ray(camera_, uv);
+        const float len = glm::length(ray.w);
+        if (!(len > 0.0f) || !std::isfinite(len) || !is_finite(ray.o)) return false;
+        ray.w /= len;
+        ++counters_.camera_rays;
+        hit = scene_.closest_hit(modules_, ray, counters_.trace);
+        return true;
+    }
+
     // Lights that reach the hit point, then the Lambert module; shadow rays only where
     // needed
     Vec3 direct_light(const Hit& hit, const Material& material) {
@@ -175,7 +207,23 @@ class PixelShader {
     Vec3 centre_;                       // area lights face the scene's centre
     Vec2 uv_{0.0f};                     // the camera sample being shaded
     std::vector<Vec2> xi_;              // light sample points
+    std::vector<CameraHits::Sample>* tile_hits_ = nullptr;  // this tile's kept hits
+    size_t cursor_ = 0;                                     // the next one to reuse
+    bool reuse_ = false, keep_ = false;
 };
+
+// What CameraHits are keyed on besides the view and size: the modules that make camera
+// rays and hits, and the engine
+std::vector<const void*> camera_hit_modules(const ModuleTable& m) {
+    const auto p = [](auto f) { return reinterpret_cast<const void*>(f); };
+    return {p(m.image_plane_point), p(m.render_tile),        p(m.camera_frame),
+            p(m.camera_constant),   p(m.camera_ray),         p(m.intersect_plane),
+            p(m.intersect_sphere),  p(m.intersect_triangle), m.engine};
+}
+
+bool same_view(const View& a, const View& b) {
+    return a.eye == b.eye && a.lookat == b.lookat && a.up == b.up && a.fov == b.fov;
+}
 
 // Distance at which the depth view turns black: the far side of the scene's bounds
 float depth_range(const Scene& scene, const View& view) {
@@ -216,6 +264,23 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
     const ImageView view_out = image.view();
     if (settings.samples_map)
         settings.samples_map->assign(size_t(settings.width) * size_t(settings.height), 1);
+    // Camera hits kept from the last frame, when nothing they depend on has changed
+    CameraHits* const kept =
+        detail::supersampled(settings) ? nullptr : settings.camera_hits;
+    const size_t primitives[3] = {scene.planes.size(), scene.spheres.size(),
+                                  scene.triangles.size()};
+    bool reuse = false;
+    if (kept) {
+        reuse = kept->valid && kept->width == settings.width &&
+                kept->height == settings.height && same_view(kept->view, view) &&
+                std::equal(primitives, primitives + 3, kept->primitives) &&
+                kept->modules == camera_hit_modules(modules) &&
+                kept->tiles.size() == static_cast<size_t>(tile_count);
+        if (!reuse) {
+            kept->clear();
+            kept->tiles.resize(static_cast<size_t>(tile_count));
+        }
+    }
     // One pass over all tiles on all threads; pass(tile, radiance) renders a tile
     const auto run_pass = [&](const auto& pass) {
         std::atomic<int> next{0};
@@ -234,6 +299,7 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
                     const int y0 = (t / tiles_x) * kTileSize;
                     const Tile tile{x0, y0, std::min(x0 + kTileSize, settings.width),
                                     std::min(y0 + kTileSize, settings.height)};
+                    if (kept) shader.begin_tile(&kept->tiles[size_t(t)], reuse, !reuse);
                     pass(tile, radiance);
                 }
             } catch (...) {
@@ -272,8 +338,21 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
     FrameStats stats;
     stats.threads = threads;
     stats.cancelled = settings.cancel && settings.cancel->load();
+    if (kept && !reuse) {
+        if (stats.cancelled) {
+            kept->clear();  // some tiles were never rendered
+        } else {
+            kept->valid = true;
+            kept->width = settings.width;
+            kept->height = settings.height;
+            kept->view = view;
+            std::copy(primitives, primitives + 3, kept->primitives);
+            kept->modules = camera_hit_modules(modules);
+        }
+    }
     for (const Counters& c : counters) {
         stats.camera_rays += c.camera_rays;
+        stats.camera_rays_reused += c.camera_rays_reused;
         stats.shadow_rays += c.shadow_rays;
         stats.shadow_rays_backfacing += c.backfacing;
         stats.shadow_rays_disabled += c.disabled;

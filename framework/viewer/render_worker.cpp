@@ -19,8 +19,9 @@ bool same_lights(const std::vector<PointLight>& a, const std::vector<PointLight>
 }
 
 // A field added to these must be compared below, or a kept frame would answer for a job
-// that differs in it (sizes with 64-bit pointers)
-static_assert(sizeof(void*) != 8 || (sizeof(RenderSettings) == 80 && sizeof(View) == 40 &&
+// that differs in it (sizes with 64-bit pointers). Not compared, because they are not
+// inputs of the image: cancel, samples_map (heat map: show_samples), camera_hits
+static_assert(sizeof(void*) != 8 || (sizeof(RenderSettings) == 88 && sizeof(View) == 40 &&
                                      sizeof(PointLight) == 24),
               "a new field in RenderSettings, View or PointLight: compare it in "
               "same_frame (viewer/render_worker.cpp), then update these sizes");
@@ -235,6 +236,9 @@ void RenderWorker::render_full(const RenderJob& job, RenderSettings settings,
     }
     std::vector<std::uint16_t> samples;
     if (job.show_samples) settings.samples_map = &samples;
+    // A change after the hit (a light, ambient, shadows, shading) shades the camera hits
+    // of the last full frame instead of casting them again (the renderer checks the rest)
+    settings.camera_hits = &camera_hits_;
     auto image = std::make_shared<Image>();
     result.stats = render(scene_, job.view, settings, modules, *image);
     if (result.stats.cancelled) return;
@@ -258,6 +262,7 @@ RenderResult RenderWorker::render_job(RenderJob& job) {
             job.scene.reset();
             scene_version_ = job.scene_version;
             kept_.clear();  // (the version tells scenes apart; this frees memory early)
+            camera_hits_.clear();  // new geometry: no kept camera hit holds
         }
         scene_.lights = job.lights;
         scene_.ambient = job.ambient;

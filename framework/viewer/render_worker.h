@@ -123,7 +123,8 @@ class RenderWorker {
     std::uint64_t scene_version_ = 0;
     std::vector<KeptFrame> kept_;            // the last full frames, newest first
     std::shared_ptr<const Image> previous_;  // the last full frame (tiles_changed)
-    std::thread thread_;                     // last: starts after the members above exist
+    CameraHits camera_hits_;  // the last full frame's camera hits (raylab/renderer.h)
+    std::thread thread_;      // last: starts after the members above exist
 };
 
 }  // namespace raylab::viewer

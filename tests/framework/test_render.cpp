@@ -1,5 +1,6 @@
 // The renderer against analytic answers, and the work it skips.
 #include <algorithm>
+#include <atomic>
 
 #include <doctest/doctest.h>
 
@@ -218,5 +219,121 @@ TEST_SUITE("render") {
             render(scene, scene.view, settings, reference_modules(), image);
         CHECK(stats.cancelled);
         CHECK(stats.camera_rays == 0);
+    }
+
+    // CameraHits: a change after the hit shades the kept hits, casting no camera ray,
+    // and gives the image of a frame rendered afresh; anything a hit depends on casts
+    TEST_CASE("kept camera hits serve a light change and nothing they depend on") {
+        Scene scene = cornell_box();
+        const ModuleTable modules = reference_modules();
+        RenderSettings settings;
+        settings.width = 64;
+        settings.height = 48;
+        const std::uint64_t pixels = 64 * 48;
+        CameraHits kept;
+        settings.camera_hits = &kept;
+        Image first, image, fresh;
+        FrameStats s = render(scene, scene.view, settings, modules, first);
+        CHECK(s.camera_rays == pixels);
+        CHECK(s.camera_rays_reused == 0);
+        REQUIRE(kept.valid);
+
+        // The light moves, shadows off and on, normals mode: hits reused, same image as
+        // a render without kept hits
+        RenderSettings plain = settings;
+        plain.camera_hits = nullptr;
+        scene.lights[0].p += Vec3(0.3f, -0.2f, 0.1f);
+        for (const bool shadows : {true, false}) {
+            for (const ShadingMode mode : {ShadingMode::lambert, ShadingMode::normals}) {
+                settings.shadows = plain.shadows = shadows;
+                settings.mode = plain.mode = mode;
+                s = render(scene, scene.view, settings, modules, image);
+                render(scene, scene.view, plain, modules, fresh);
+                CHECK(s.camera_rays == 0);
+                CHECK(s.camera_rays_reused == pixels);
+                CHECK(image.pixels == fresh.pixels);
+            }
+        }
+        CHECK(image.pixels != first.pixels);  // the light did move
+
+        // The view, the size, a module that makes hits, the geometry's counts: cast again
+        View moved = scene.view;
+        moved.eye.x += 0.01f;
+        s = render(scene, moved, settings, modules, image);
+        CHECK(s.camera_rays == pixels);
+        CHECK(s.camera_rays_reused == 0);
+        s = render(scene, moved, settings, modules, image);
+        CHECK(s.camera_rays_reused == pixels);
+        ModuleTable module_path = modules;
+        module_path.engine = nullptr;
+        s = render(scene, moved, settings, module_path, image);
+        CHECK(s.camera_rays == pixels);
+        settings.width = 63;
+        s = render(scene, moved, settings, module_path, image);
+        CHECK(s.camera_rays == 63 * 48);
+        scene.spheres.push_back({Sphere{Vec3(0.0f), 0.3f}, 0});
+        scene.commit();
+        s = render(scene, moved, settings, module_path, image);
+        CHECK(s.camera_rays == 63 * 48);
+        plain = settings;
+        plain.camera_hits = nullptr;
+        render(scene, moved, plain, module_path, fresh);
+        s = render(scene, moved, settings, module_path, image);
+        CHECK(s.camera_rays_reused == 63 * 48);
+        CHECK(image.pixels == fresh.pixels);  // the sphere is in both
+
+        // Supersampled frames neither use nor fill them
+        settings.spp = 4;
+        s = render(scene, moved, settings, module_path, image);
+        CHECK(s.camera_rays_reused == 0);
+        CHECK(kept.valid);
+
+        // A cancelled frame leaves no kept hits behind
+        settings.spp = 1;
+        settings.height = 40;
+        std::atomic<bool> cancel{true};
+        settings.cancel = &cancel;
+        render(scene, moved, settings, module_path, image);
+        CHECK_FALSE(kept.valid);
+    }
+
+    // A pixel loop that asks for the pixels in another order than the frame that kept
+    // the hits (the same function: say a student's with state) casts afresh where the
+    // points differ, and the image is still right
+    TEST_CASE("kept camera hits follow the pixel loop's points, not its order") {
+        static bool backwards = false;
+        static const ModuleTable* table = nullptr;
+        struct Loop {
+            static void render_tile(const Tile& tile, const PixelRadiance& radiance,
+                                    const ImageView& image) {
+                for (int j = tile.y0; j < tile.y1; ++j) {
+                    for (int n = 0; n < tile.x1 - tile.x0; ++n) {
+                        const int i = backwards ? tile.x1 - 1 - n : tile.x0 + n;
+                        image.set(i, j,
+                                  radiance(table->image_plane_point(i, j, image.width,
+                                                                    image.height)));
+                    }
+                }
+            }
+        };
+        const Scene scene = cornell_box();
+        ModuleTable modules = reference_modules();
+        modules.render_tile = &Loop::render_tile;
+        table = &modules;
+        RenderSettings settings;
+        settings.width = 48;
+        settings.height = 32;
+        CameraHits kept;
+        settings.camera_hits = &kept;
+        Image image, fresh;
+        render(scene, scene.view, settings, modules, image);
+        backwards = true;
+        const FrameStats s = render(scene, scene.view, settings, modules, image);
+        backwards = false;
+        CHECK(s.camera_rays == 48 * 32);
+        CHECK(s.camera_rays_reused == 0);
+        settings.camera_hits = nullptr;
+        render(scene, scene.view, settings, modules, fresh);
+        CHECK(image.pixels == fresh.pixels);
     }
 }

@@ -45,6 +45,32 @@ PixelSampling parse_pixel_sampling(const std::string& word);
 inline constexpr int kMaxImageSide = 16384;
 inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 26;
 
+/// Camera rays and their closest hits, kept from one frame for the next (the viewer's):
+/// when only what lies after the hit changes (lights, ambient, shadows, shading mode, the
+/// light and shading modules), render() shades the kept hits and casts no camera ray.
+/// render() fills it on a frame it cannot reuse it for; before reusing it checks the
+/// image size, the view, the scene's primitive counts and the modules 01-05 it was
+/// filled with, and each pixel's (u, v) (a pixel loop that calls in another order casts
+/// afresh). Modules are taken to be functions of their arguments (the contract). The
+/// owner calls clear() when the scene's geometry changes in place. One sample per pixel
+/// only: supersampled frames neither fill nor use it.
+struct CameraHits {
+    struct Sample {
+        Vec2 uv;                 ///< the image-plane point the pixel loop asked for
+        Ray ray;                 ///< the camera ray, normalised
+        bool traced = false;     ///< false: the camera module's ray was not valid
+        std::optional<Hit> hit;  ///< its closest hit
+    };
+    void clear() { tiles.clear(), valid = false; }
+
+    bool valid = false;
+    int width = 0, height = 0;
+    View view;
+    size_t primitives[3] = {0, 0, 0};        ///< planes, spheres, triangles
+    std::vector<const void*> modules;        ///< modules 01-05's functions and the engine
+    std::vector<std::vector<Sample>> tiles;  ///< per tile, in the pixel loop's call order
+};
+
 struct RenderSettings {
     int width = 640;
     int height = 480;
@@ -67,6 +93,9 @@ struct RenderSettings {
     /// When set: resized to width * height and filled with the camera samples each pixel
     /// took (the viewer's heat map).
     std::vector<std::uint16_t>* samples_map = nullptr;
+    /// When set (one sample per pixel): camera hits reused from, or kept for, the next
+    /// frame (CameraHits).
+    CameraHits* camera_hits = nullptr;
 };
 
 /// Checks sizes and thread count; throws raylab::Error naming the problem.
@@ -75,9 +104,10 @@ void validate(const RenderSettings& settings);
 /// What a frame cost. Rays are counted by kind; skipped shadow rays are the ones the
 /// renderer did not need to cast.
 struct FrameStats {
-    double milliseconds = 0.0;      ///< wall-clock render time
-    std::uint64_t camera_rays = 0;  ///< one per pixel
-    std::uint64_t shadow_rays = 0;  ///< any-hit queries cast by the shadow module
+    double milliseconds = 0.0;             ///< wall-clock render time
+    std::uint64_t camera_rays = 0;         ///< one per pixel, but for reused ones
+    std::uint64_t camera_rays_reused = 0;  ///< hits taken from settings.camera_hits
+    std::uint64_t shadow_rays = 0;         ///< any-hit queries cast by the shadow module
     std::uint64_t shadow_rays_backfacing = 0;  ///< skipped: light behind the surface
     std::uint64_t shadow_rays_disabled = 0;    ///< skipped: shadows off
     std::uint64_t intersection_tests = 0;      ///< primitive tests of all rays
