@@ -129,13 +129,12 @@ class PixelShader {
         if (reuse_ && cursor_ < tile_hits_->size() && (*tile_hits_)[cursor_].uv == uv) {
             const CameraHits::Sample& kept = (*tile_hits_)[cursor_++];
             ++counters_.camera_rays_reused;
-            ray = kept.ray;
-            hit = kept.hit;
+            hit = kept.hit;  // (the ray itself is not kept: shading needs only the hit)
             return kept.traced;
         }
         reuse_ = false;  // out of step: the rest of the tile is cast
         const bool traced = cast_camera_ray(uv, ray, hit);
-        if (keep_) tile_hits_->push_back({uv, ray, traced, hit});
+        if (keep_) tile_hits_->push_back({uv, traced, hit});
         return traced;
     }
 
@@ -265,8 +264,10 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
     if (settings.samples_map)
         settings.samples_map->assign(size_t(settings.width) * size_t(settings.height), 1);
     // Camera hits kept from the last frame, when nothing they depend on has changed
-    CameraHits* const kept =
-        detail::supersampled(settings) ? nullptr : settings.camera_hits;
+    const bool keepable =
+        !detail::supersampled(settings) &&
+        std::int64_t{settings.width} * settings.height <= CameraHits::kMaxPixels;
+    CameraHits* const kept = keepable ? settings.camera_hits : nullptr;
     const size_t primitives[3] = {scene.planes.size(), scene.spheres.size(),
                                   scene.triangles.size()};
     bool reuse = false;

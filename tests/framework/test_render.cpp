@@ -288,6 +288,17 @@ TEST_SUITE("render") {
         CHECK(s.camera_rays_reused == 0);
         CHECK(kept.valid);
 
+        // Nor do frames above CameraHits::kMaxPixels (72 bytes a pixel)
+        const Scene floor = lit_plane(Vec3(0.0f, 2.0f, 0.0f), Vec3(1.0f));
+        RenderSettings big;
+        big.width = 1025;
+        big.height = 1024;
+        big.camera_hits = &kept;
+        render(floor, floor.view, big, modules, image);
+        s = render(floor, floor.view, big, modules, image);
+        CHECK(s.camera_rays == 1025 * 1024);
+        CHECK(s.camera_rays_reused == 0);
+
         // A cancelled frame leaves no kept hits behind
         settings.spp = 1;
         settings.height = 40;

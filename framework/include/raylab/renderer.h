@@ -53,13 +53,14 @@ inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 26;
 /// filled with, and each pixel's (u, v) (a pixel loop that calls in another order casts
 /// afresh). Modules are taken to be functions of their arguments (the contract). The
 /// owner calls clear() when the scene's geometry changes in place. One sample per pixel
-/// only: supersampled frames neither fill nor use it.
+/// and at most kMaxPixels pixels (72 bytes each): larger or supersampled frames neither
+/// fill nor use it.
 struct CameraHits {
+    static constexpr std::int64_t kMaxPixels = std::int64_t{1} << 20;  // 1280 x 800
     struct Sample {
         Vec2 uv;                 ///< the image-plane point the pixel loop asked for
-        Ray ray;                 ///< the camera ray, normalised
         bool traced = false;     ///< false: the camera module's ray was not valid
-        std::optional<Hit> hit;  ///< its closest hit
+        std::optional<Hit> hit;  ///< the camera ray's closest hit
     };
     void clear() { tiles.clear(), valid = false; }
 
