@@ -2,9 +2,19 @@
 // Wald, "On fast Construction of SAH-based Bounding Volume Hierarchies" (2007), then
 // collapsed to four children per node by pulling up the largest grandchildren (Wald,
 // Benthin and Boulos, "Getting Rid of Packets", 2008).
+//
+// The tree depends on the boxes only, never on the number of threads or their timing:
+// a binary node is stored at the slot where it splits its primitives (a position no other
+// node splits at), so any thread may build any subtree, and the collapse walks the tree
+// in the same order every time.
 #include "raylab/bvh.h"
 
 #include <algorithm>
+#include <condition_variable>
+#include <cstring>
+#include <deque>
+#include <memory>
+#include <mutex>
 #include <thread>
 
 #include "raylab/error.h"
@@ -18,203 +28,444 @@ constexpr int kMaxSahDepth = 40;        // then index halving: depth <= 40 + 32
 constexpr float kTraversalCost = 1.0f;  // relative to one primitive test
 // Below this many primitives a second thread costs more than it saves
 constexpr std::uint32_t kParallelMin = 16384;
+// A subtree at least this large is offered to the other threads
+constexpr std::uint32_t kTaskMin = 4096;
 
-struct Bin {
-    Aabb box;
-    std::uint32_t count = 0;
+// Four floats (x, y, z and a lane the geometry ignores) in one SSE register where there
+// is SSE2. min and max keep b unless a is smaller (larger), as glm::min/max and minps do
+#if defined(__SSE2__)
+struct F4 {
+    __m128 v;
+};
+inline F4 load(const float* p) {
+    return {_mm_load_ps(p)};
+}
+inline F4 splat(float x) {
+    return {_mm_set1_ps(x)};
+}
+inline F4 add(F4 a, F4 b) {
+    return {_mm_add_ps(a.v, b.v)};
+}
+inline F4 sub(F4 a, F4 b) {
+    return {_mm_sub_ps(a.v, b.v)};
+}
+inline F4 mul(F4 a, F4 b) {
+    return {_mm_mul_ps(a.v, b.v)};
+}
+inline F4 min(F4 a, F4 b) {
+    return {_mm_min_ps(a.v, b.v)};
+}
+inline F4 max(F4 a, F4 b) {
+    return {_mm_max_ps(a.v, b.v)};
+}
+inline void store(float* p, F4 a) {
+    _mm_store_ps(p, a.v);
+}
+// Truncated to integers, as static_cast<int>
+inline void store_int(int* p, F4 a) {
+    _mm_store_si128(reinterpret_cast<__m128i*>(p), _mm_cvttps_epi32(a.v));
+}
+// Lane 3 set to zero
+inline F4 xyz(F4 a) {
+    const __m128i mask = _mm_set_epi32(0, -1, -1, -1);
+    return {_mm_and_ps(a.v, _mm_castsi128_ps(mask))};
+}
+#else
+struct F4 {
+    float v[4];
+};
+template <class Op>
+inline F4 lanes(F4 a, F4 b, Op op) {
+    return {
+        {op(a.v[0], b.v[0]), op(a.v[1], b.v[1]), op(a.v[2], b.v[2]), op(a.v[3], b.v[3])}};
+}
+inline F4 load(const float* p) {
+    return {{p[0], p[1], p[2], p[3]}};
+}
+inline F4 splat(float x) {
+    return {{x, x, x, x}};
+}
+inline F4 add(F4 a, F4 b) {
+    return lanes(a, b, [](float x, float y) { return x + y; });
+}
+inline F4 sub(F4 a, F4 b) {
+    return lanes(a, b, [](float x, float y) { return x - y; });
+}
+inline F4 mul(F4 a, F4 b) {
+    return lanes(a, b, [](float x, float y) { return x * y; });
+}
+inline F4 min(F4 a, F4 b) {
+    return lanes(a, b, [](float x, float y) { return x < y ? x : y; });
+}
+inline F4 max(F4 a, F4 b) {
+    return lanes(a, b, [](float x, float y) { return x > y ? x : y; });
+}
+inline void store(float* p, F4 a) {
+    std::copy(a.v, a.v + 4, p);
+}
+inline void store_int(int* p, F4 a) {
+    for (int k = 0; k < 4; ++k)
+        p[k] = static_cast<int>(a.v[k]);
+}
+inline F4 xyz(F4 a) {
+    return {{a.v[0], a.v[1], a.v[2], 0.0f}};
+}
+#endif
+
+// A box in two F4s; empty when lo > hi
+struct Box4 {
+    F4 lo = splat(kInfinity), hi = splat(-kInfinity);
+    void grow(F4 p) { grow(p, p); }
+    void grow(F4 l, F4 h) {
+        lo = min(l, lo);
+        hi = max(h, hi);
+    }
+    void grow(const Box4& b) { grow(b.lo, b.hi); }
+    // As Aabb::half_area, operation for operation
+    float half_area() const {
+        alignas(16) float e[4];
+        store(e, max(splat(0.0f), sub(hi, lo)));
+        return e[0] * e[1] + e[1] * e[2] + e[2] * e[0];
+    }
 };
 
-// A node of the binary tree: interior nodes have count == 0, the left child at
-// index + 1 and the right one at first_or_second; a leaf holds slots [first, + count)
+// A primitive during the build: its box, and in lane 3 of lo its index (bit for bit,
+// never used in arithmetic). 32 bytes, moved as a whole by the partition
+struct alignas(16) Ref {
+    float lo[4];
+    float hi[4];
+    F4 centre() const { return mul(add(xyz(load(lo)), load(hi)), splat(0.5f)); }
+};
+
+// A child of a binary node: its box and its code, a binary node's slot or (with
+// Bvh::kLeaf) a leaf as Bvh::Node::child holds it
+struct Child {
+    float lo[3], hi[3];
+    std::uint32_t code;
+    float half_area() const {
+        const float ex = std::max(hi[0] - lo[0], 0.0f);
+        const float ey = std::max(hi[1] - lo[1], 0.0f);
+        const float ez = std::max(hi[2] - lo[2], 0.0f);
+        return ex * ey + ey * ez + ez * ex;
+    }
+};
+
+// Trivially constructible, so the array of them is allocated without being written
 struct BinaryNode {
-    Aabb box;
-    std::uint32_t first_or_second = 0;
-    std::uint32_t count = 0;
+    Child child[2];
 };
 
-// A primitive during the build: its box and index, moved together so that every pass
-// over a node's primitives reads memory in order
-struct Ref {
-    Aabb box;
-    std::uint32_t prim;
-    Vec3 centre() const { return box.centre(); }
+// The subtree over refs[first, first + count): its box, its centres' box, its depth, and
+// where its code goes
+struct Task {
+    Box4 box, centres;
+    std::uint32_t first = 0, count = 0;
+    int depth = 0;
+    std::uint32_t* code = nullptr;
+};
+
+// The bin of each axis for a centre c: floor((c - lo) * scale) clamped to [0, kBins - 1]
+// (a NaN, from an inactive axis's zero scale, gives bin 0)
+struct Binning {
+    F4 lo, scale;
+    void bins_of(F4 c, int bin[4]) const {
+        const F4 x = min(max(mul(sub(c, lo), scale), splat(0.0f)), splat(kBins - 1.0f));
+        store_int(bin, x);
+    }
+};
+
+// The bins of the three axes. A bin's box is written when its first primitive arrives
+// (occupied has its bit), so only the bins in use are ever touched
+struct Bins {
+    struct Bin {
+        F4 lo, hi;
+        std::uint32_t count;
+    };
+    Bin bin[3][kBins];
+    unsigned occupied[3] = {0, 0, 0};
+
+    void add(const Ref& r, const Binning& binning) {
+        alignas(16) int b[4];
+        binning.bins_of(r.centre(), b);
+        const F4 lo = load(r.lo), hi = load(r.hi);
+        for (int axis = 0; axis < 3; ++axis) {
+            Bin& x = bin[axis][b[axis]];
+            const unsigned bit = 1u << b[axis];
+            if (occupied[axis] & bit) {
+                x.lo = min(lo, x.lo);
+                x.hi = max(hi, x.hi);
+                ++x.count;
+            } else {
+                x = Bin{lo, hi, 1};
+                occupied[axis] |= bit;
+            }
+        }
+    }
+};
+
+// The occupied bins of one axis, in order
+int occupied_bins(unsigned occupied, int list[kBins]) {
+    int n = 0;
+    for (; occupied != 0; occupied &= occupied - 1)
+        list[n++] = __builtin_ctz(occupied);
+    return n;
+}
+
+// Finds the cheapest split of t over kBins bins along every axis with a non-zero centre
+// extent (all three binned in one pass). Returns the SAH cost; axis stays -1 when there
+// is no split, else left and right get the two sides' boxes. The planes between two
+// occupied bins all give the same cost, so only the first of them is costed
+float best_split(const Ref* refs, const Task& t, int& best_axis, int& best_bin,
+                 Binning& binning, Box4& left, Box4& right) {
+    alignas(16) float lo[4], hi[4], scale[4] = {};
+    store(lo, t.centres.lo);
+    store(hi, t.centres.hi);
+    bool active[3];
+    for (int axis = 0; axis < 3; ++axis) {
+        const float extent = hi[axis] - lo[axis];
+        active[axis] = extent > 0.0f;
+        scale[axis] = active[axis] ? kBins / extent : 0.0f;
+    }
+    binning = Binning{t.centres.lo, load(scale)};
+    Bins bins;
+    for (std::uint32_t k = t.first; k < t.first + t.count; ++k)
+        bins.add(refs[k], binning);
+    float best_cost = kInfinity;
+    for (int axis = 0; axis < 3; ++axis) {
+        int list[kBins];
+        const int n_bins = occupied_bins(bins.occupied[axis], list);
+        if (!active[axis] || n_bins < 2) continue;
+        const Bins::Bin* bin = bins.bin[axis];
+        // Sweep from the right, then from the left, to get both sides' areas
+        float right_area[kBins];
+        std::uint32_t right_count[kBins];
+        Box4 acc;
+        std::uint32_t n = 0;
+        for (int i = n_bins - 1; i > 0; --i) {
+            acc.grow(bin[list[i]].lo, bin[list[i]].hi);
+            n += bin[list[i]].count;
+            right_area[i] = acc.half_area();
+            right_count[i] = n;
+        }
+        acc = Box4{};
+        n = 0;
+        for (int i = 0; i < n_bins - 1; ++i) {
+            acc.grow(bin[list[i]].lo, bin[list[i]].hi);
+            n += bin[list[i]].count;
+            const float cost =
+                acc.half_area() * n + right_area[i + 1] * right_count[i + 1];
+            if (cost < best_cost) {
+                best_cost = cost;
+                best_axis = axis;
+                best_bin = list[i];
+            }
+        }
+    }
+    if (best_axis >= 0) {
+        int list[kBins];
+        const int n_bins = occupied_bins(bins.occupied[best_axis], list);
+        for (int i = 0; i < n_bins; ++i) {
+            const Bins::Bin& b = bins.bin[best_axis][list[i]];
+            (list[i] <= best_bin ? left : right).grow(b.lo, b.hi);
+        }
+    }
+    return best_cost;
+}
+
+// Moves the refs whose bin along axis is at most split before the others, in the order
+// std::partition (libstdc++) leaves them, and gathers both sides' centre boxes; returns
+// the number on the left
+std::uint32_t partition(Ref* refs, const Task& t, const Binning& binning, int axis,
+                        int split, Box4& left_centres, Box4& right_centres) {
+    Ref* first = refs + t.first;
+    Ref* last = first + t.count;
+    const auto goes_left = [&](const Ref& r) {
+        alignas(16) int bin[4];
+        const F4 c = r.centre();
+        binning.bins_of(c, bin);
+        (bin[axis] <= split ? left_centres : right_centres).grow(c);
+        return bin[axis] <= split;
+    };
+    for (;;) {
+        for (;; ++first) {
+            if (first == last)
+                return static_cast<std::uint32_t>(first - (refs + t.first));
+            if (!goes_left(*first)) break;
+        }
+        --last;
+        for (;; --last) {
+            if (first == last)
+                return static_cast<std::uint32_t>(first - (refs + t.first));
+            if (goes_left(*last)) break;
+        }
+        std::swap(*first, *last);
+        ++first;
+    }
+}
+
+// Boxes of refs[first, first + count) and of their centres
+void bounds(const Ref* refs, std::uint32_t first, std::uint32_t count, Box4& box,
+            Box4& centres) {
+    for (std::uint32_t k = first; k < first + count; ++k) {
+        box.grow(load(refs[k].lo), load(refs[k].hi));
+        centres.grow(refs[k].centre());
+    }
+}
+
+// The work list the build threads share: subtrees waiting for a thread, and how many
+// subtrees are still unfinished (waiting or being built)
+class Scheduler {
+  public:
+    void push(const Task& t) {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        waiting_.push_back(t);
+        ++unfinished_;
+        wake_.notify_one();
+    }
+    // The oldest (largest) waiting subtree; false when the whole tree is done
+    bool pop(Task& t) {
+        std::unique_lock<std::mutex> lock(mutex_);
+        wake_.wait(lock, [&] { return !waiting_.empty() || unfinished_ == 0; });
+        if (waiting_.empty()) return false;
+        t = waiting_.front();
+        waiting_.pop_front();
+        return true;
+    }
+    void done() {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        if (--unfinished_ == 0) wake_.notify_all();
+    }
+
+  private:
+    std::mutex mutex_;
+    std::condition_variable wake_;
+    std::deque<Task> waiting_;
+    std::uint32_t unfinished_ = 0;
 };
 
 struct Builder {
-    std::vector<Ref>& refs;
-    std::vector<BinaryNode> nodes;
+    Ref* refs;
+    BinaryNode* nodes;
+    std::uint32_t* prims;
+    Scheduler* scheduler;  // null: one thread
 
-    // Builds the subtree over refs[first, first + count) into nodes[index].
-    void build(std::uint32_t index, std::uint32_t first, std::uint32_t count, int depth) {
-        // Bounds of the primitives and of their centres
-        Aabb box, centre_box;
-        for (std::uint32_t k = first; k < first + count; ++k) {
-            box.grow(refs[k].box);
-            centre_box.grow(refs[k].centre());
-        }
-        nodes[index].box = box;
+    void build(const Task& t) {
         const auto make_leaf = [&] {
-            nodes[index].first_or_second = first;
-            nodes[index].count = count;
+            for (std::uint32_t k = t.first; k < t.first + t.count; ++k)
+                std::memcpy(&prims[k], &refs[k].lo[3], sizeof(std::uint32_t));
+            *t.code = Bvh::kLeaf | t.count << Bvh::kCountShift | t.first;
         };
-        if (count <= 1) return make_leaf();
+        if (t.count <= 1) return make_leaf();
         // Deep trees (pathological input): halve by index so the depth stays bounded
-        if (depth >= kMaxSahDepth) return split(index, first, count, count / 2, depth);
+        if (t.depth >= kMaxSahDepth) return split_by_index(t);
         int axis = -1, bin = 0;
-        const float cost = best_split(first, count, centre_box, axis, bin);
+        Binning binning;
+        Task left, right;
+        const float cost = best_split(refs, t, axis, bin, binning, left.box, right.box);
         // SAH termination: a leaf is cheaper than the split (small leaves only)
-        const float leaf_cost = static_cast<float>(count);
+        const float leaf_cost = static_cast<float>(t.count);
         const float split_cost =
-            kTraversalCost + cost / std::max(box.half_area(), 1e-30f);
-        if (axis < 0 || (count <= Bvh::kMaxLeafSize && leaf_cost <= split_cost)) {
-            if (axis >= 0 || count <= Bvh::kMaxLeafSize) return make_leaf();
+            kTraversalCost + cost / std::max(t.box.half_area(), 1e-30f);
+        if (axis < 0 || (t.count <= Bvh::kMaxLeafSize && leaf_cost <= split_cost)) {
+            if (axis >= 0 || t.count <= Bvh::kMaxLeafSize) return make_leaf();
             // All centres coincide: split by index so leaves stay small
-            return split(index, first, count, count / 2, depth);
+            return split_by_index(t);
         }
-        // Partition by bin
-        const float lo = centre_box.lo[axis];
-        const float scale = kBins / (centre_box.hi[axis] - lo);
-        Ref* mid = std::partition(
-            refs.data() + first, refs.data() + first + count,
-            [&](const Ref& r) { return bin_of(r.centre()[axis], lo, scale) <= bin; });
-        split(index, first, count,
-              static_cast<std::uint32_t>(mid - (refs.data() + first)), depth);
+        const std::uint32_t left_count =
+            partition(refs, t, binning, axis, bin, left.centres, right.centres);
+        split(t, left_count, left, right);
     }
 
-    // The SAH cost of the best split over kBins bins along every axis with a non-zero
-    // centre extent (all three binned in one pass); axis stays -1 when there is none
-    float best_split(std::uint32_t first, std::uint32_t count, const Aabb& centre_box,
-                     int& best_axis, int& best_bin) const {
-        Bin bins[3][kBins];
-        float lo[3], scale[3];
-        bool active[3];
-        for (int axis = 0; axis < 3; ++axis) {
-            const float extent = centre_box.hi[axis] - centre_box.lo[axis];
-            active[axis] = extent > 0.0f;
-            lo[axis] = centre_box.lo[axis];
-            scale[axis] = active[axis] ? kBins / extent : 0.0f;
-        }
-        for (std::uint32_t k = first; k < first + count; ++k) {
-            const Ref& r = refs[k];
-            const Vec3 c = r.centre();
-            for (int axis = 0; axis < 3; ++axis) {
-                Bin& b = bins[axis][bin_of(c[axis], lo[axis], scale[axis])];
-                b.box.grow(r.box);
-                ++b.count;
-            }
-        }
-        float best_cost = kInfinity;
-        for (int axis = 0; axis < 3; ++axis) {
-            if (!active[axis]) continue;
-            // Sweep from the right, then from the left, to get both sides' areas
-            float right_area[kBins];
-            std::uint32_t right_count[kBins];
-            Aabb acc;
-            std::uint32_t n = 0;
-            for (int b = kBins - 1; b > 0; --b) {
-                acc.grow(bins[axis][b].box);
-                n += bins[axis][b].count;
-                right_area[b] = acc.half_area();
-                right_count[b] = n;
-            }
-            acc = Aabb{};
-            n = 0;
-            for (int b = 0; b < kBins - 1; ++b) {
-                acc.grow(bins[axis][b].box);
-                n += bins[axis][b].count;
-                if (n == 0 || right_count[b + 1] == 0) continue;
-                const float cost =
-                    acc.half_area() * n + right_area[b + 1] * right_count[b + 1];
-                if (cost < best_cost) {
-                    best_cost = cost;
-                    best_axis = axis;
-                    best_bin = b;
-                }
-            }
-        }
-        return best_cost;
+    void split_by_index(const Task& t) {
+        Task left, right;
+        const std::uint32_t left_count = t.count / 2;
+        bounds(refs, t.first, left_count, left.box, left.centres);
+        bounds(refs, t.first + left_count, t.count - left_count, right.box,
+               right.centres);
+        split(t, left_count, left, right);
     }
 
-    // The right half of a large split is built by a second thread into its own nodes,
-    // appended after the left half (whose root is index + 1, as always)
-    void split(std::uint32_t index, std::uint32_t first, std::uint32_t count,
-               std::uint32_t left_count, int depth) {
-        nodes[index].count = 0;
-        const std::uint32_t right_count = count - left_count;
-        Builder right{refs, {}};
-        std::thread helper;
-        if (depth == 0 && right_count >= kParallelMin &&
-            std::thread::hardware_concurrency() > 1) {
-            helper =
-                std::thread([&] { right.build_root(first + left_count, right_count); });
+    // Makes t an interior node, stored at the slot of its split position, and builds its
+    // children; a large right child may go to another thread
+    void split(const Task& t, std::uint32_t left_count, Task& left, Task& right) {
+        const std::uint32_t slot = t.first + left_count;
+        BinaryNode& node = nodes[slot];
+        *t.code = slot;
+        left.first = t.first;
+        left.count = left_count;
+        right.first = slot;
+        right.count = t.count - left_count;
+        left.depth = right.depth = t.depth + 1;
+        Task* children[2] = {&left, &right};
+        for (int k = 0; k < 2; ++k) {
+            Child& c = node.child[k];
+            alignas(16) float lo[4], hi[4];
+            store(lo, children[k]->box.lo);
+            store(hi, children[k]->box.hi);
+            std::copy(lo, lo + 3, c.lo);
+            std::copy(hi, hi + 3, c.hi);
+            children[k]->code = &c.code;
         }
-        const std::uint32_t left = static_cast<std::uint32_t>(nodes.size());
-        nodes.emplace_back();
-        build(left, first, left_count, depth + 1);
-        const std::uint32_t right_root = static_cast<std::uint32_t>(nodes.size());
-        nodes[index].first_or_second = right_root;
-        if (helper.joinable()) {
-            helper.join();
-            for (BinaryNode n : right.nodes) {
-                if (n.count == 0) n.first_or_second += right_root;
-                nodes.push_back(n);
-            }
+        if (scheduler && right.count >= kTaskMin) {
+            scheduler->push(right);
+            build(left);
             return;
         }
-        nodes.emplace_back();
-        build(right_root, first + left_count, right_count, depth + 1);
+        build(left);
+        build(right);
     }
 
-    void build_root(std::uint32_t first, std::uint32_t count) {
-        nodes.reserve(2 * count);
-        nodes.emplace_back();
-        build(0, first, count, 1);
-    }
-
-    static int bin_of(float c, float lo, float scale) {
-        const int b = static_cast<int>((c - lo) * scale);
-        return std::clamp(b, 0, kBins - 1);
+    // Builds waiting subtrees until the whole tree is done
+    void work() {
+        Task t;
+        while (scheduler->pop(t)) {
+            build(t);
+            scheduler->done();
+        }
     }
 };
 
-}  // namespace
-
-// Collapses the binary subtree at binary[index] into 4-wide nodes; returns its child
-// code (a node index or a leaf)
-static std::uint32_t collapse(const std::vector<BinaryNode>& binary, std::uint32_t index,
-                              std::vector<Bvh::Node>& nodes) {
-    const BinaryNode& b = binary[index];
-    if (b.count > 0) return Bvh::kLeaf | b.count << Bvh::kCountShift | b.first_or_second;
+// Collapses the binary subtree of c into 4-wide nodes; returns its child code (a node
+// index or a leaf)
+std::uint32_t collapse(const BinaryNode* binary, const Child& c,
+                       std::vector<Bvh::Node>& nodes) {
+    if (c.code & Bvh::kLeaf) return c.code;
     // Open the interior child of largest area until there are four
-    std::uint32_t kids[4] = {index + 1, b.first_or_second, 0, 0};
+    const Child* kids[4] = {&binary[c.code].child[0], &binary[c.code].child[1]};
+    // A leaf's area counts as -1, below every interior child's
+    const auto area = [](const Child* k) {
+        return k->code & Bvh::kLeaf ? -1.0f : k->half_area();
+    };
+    float areas[4] = {area(kids[0]), area(kids[1])};
     int n = 2;
     while (n < 4) {
-        int widest = -1;
-        for (int k = 0; k < n; ++k) {
-            const BinaryNode& c = binary[kids[k]];
-            if (c.count == 0 &&
-                (widest < 0 || c.box.half_area() > binary[kids[widest]].box.half_area()))
-                widest = k;
+        int widest = 0;
+        for (int k = 1; k < n; ++k) {
+            if (areas[k] > areas[widest]) widest = k;
         }
-        if (widest < 0) break;
-        const std::uint32_t opened = kids[widest];
-        kids[widest] = opened + 1;
-        kids[n++] = binary[opened].first_or_second;
+        if (areas[widest] < 0.0f) break;
+        const BinaryNode& opened = binary[kids[widest]->code];
+        kids[widest] = &opened.child[0];
+        kids[n] = &opened.child[1];
+        areas[widest] = area(kids[widest]);
+        areas[n] = area(kids[n]);
+        ++n;
     }
     const std::uint32_t self = static_cast<std::uint32_t>(nodes.size());
     nodes.emplace_back();
     for (int k = 0; k < 4; ++k) {
-        const Aabb box = k < n ? binary[kids[k]].box : Aabb{};
         for (int a = 0; a < 3; ++a) {
-            nodes[self].box[2 * a][k] = box.lo[a];
-            nodes[self].box[2 * a + 1][k] = box.hi[a];
+            // An unused slot: an empty box and a leaf of no primitives
+            nodes[self].box[2 * a][k] = k < n ? kids[k]->lo[a] : kInfinity;
+            nodes[self].box[2 * a + 1][k] = k < n ? kids[k]->hi[a] : -kInfinity;
         }
-        // An unused slot: an empty box and a leaf of no primitives
-        const std::uint32_t code = k < n ? collapse(binary, kids[k], nodes) : Bvh::kLeaf;
+        const std::uint32_t code = k < n ? collapse(binary, *kids[k], nodes) : Bvh::kLeaf;
         nodes[self].child[k] = code;
     }
     return self;
 }
+
+}  // namespace
 
 void Bvh::build(const std::vector<Aabb>& boxes) {
     nodes_.clear();
@@ -225,18 +476,46 @@ void Bvh::build(const std::vector<Aabb>& boxes) {
     if (boxes.size() > kFirstMask)
         throw Error("too many primitives for the BVH: " + std::to_string(boxes.size()) +
                     " (at most " + std::to_string(kFirstMask) + ")");
-    std::vector<Ref> refs(boxes.size());
-    for (std::uint32_t k = 0; k < refs.size(); ++k)
-        refs[k] = Ref{boxes[k], k};
-    Builder builder{refs, {}};
-    builder.nodes.reserve(2 * boxes.size());
-    builder.nodes.emplace_back();
-    builder.build(0, 0, static_cast<std::uint32_t>(boxes.size()), 0);
-    for (std::uint32_t k = 0; k < refs.size(); ++k)
-        prims_[k] = refs[k].prim;
-    bounds_ = builder.nodes[0].box;
-    nodes_.reserve(builder.nodes.size() / 3 + 1);
-    root_ = collapse(builder.nodes, 0, nodes_);
+    const std::uint32_t count = static_cast<std::uint32_t>(boxes.size());
+    // Neither array is written before the build writes it
+    const std::unique_ptr<Ref[]> refs(new Ref[count]);
+    const std::unique_ptr<BinaryNode[]> binary(new BinaryNode[count]);
+    Task root;
+    root.count = count;
+    for (std::uint32_t k = 0; k < count; ++k) {
+        Ref& r = refs[k];
+        const Aabb& b = boxes[k];
+        r = Ref{{b.lo.x, b.lo.y, b.lo.z, 0.0f}, {b.hi.x, b.hi.y, b.hi.z, 0.0f}};
+        std::memcpy(&r.lo[3], &k, sizeof k);
+        root.box.grow(load(r.lo), load(r.hi));
+        root.centres.grow(r.centre());
+    }
+    Child top{};
+    root.code = &top.code;
+    const unsigned threads =
+        count < kParallelMin ? 1 : std::thread::hardware_concurrency();
+    if (threads <= 1) {
+        Builder{refs.get(), binary.get(), prims_.data(), nullptr}.build(root);
+    } else {
+        Scheduler scheduler;
+        Builder builder{refs.get(), binary.get(), prims_.data(), &scheduler};
+        scheduler.push(root);
+        std::vector<std::thread> helpers;
+        for (unsigned k = 1; k < threads; ++k)
+            helpers.emplace_back([&] { builder.work(); });
+        builder.work();
+        for (std::thread& h : helpers)
+            h.join();
+    }
+    alignas(16) float lo[4], hi[4];
+    store(lo, root.box.lo);
+    store(hi, root.box.hi);
+    std::copy(lo, lo + 3, top.lo);
+    std::copy(hi, hi + 3, top.hi);
+    bounds_.lo = Vec3(lo[0], lo[1], lo[2]);
+    bounds_.hi = Vec3(hi[0], hi[1], hi[2]);
+    nodes_.reserve(count / 3 + 1);
+    root_ = collapse(binary.get(), top, nodes_);
     nodes_.shrink_to_fit();
 }
 
