@@ -174,8 +174,7 @@ struct Binning {
     }
 };
 
-// The bins of the three axes. A bin's box is written when its first primitive arrives
-// (occupied has its bit), so only the bins in use are ever touched
+// The bins of the three axes. A bin's box is valid when its bit in occupied is set
 struct Bins {
     struct Bin {
         F4 lo, hi;
@@ -184,7 +183,9 @@ struct Bins {
     Bin bin[3][kBins];
     unsigned occupied[3] = {0, 0, 0};
 
-    void add(const Ref& r, const Binning& binning) {
+    // Small ranges: a bin is written when its first primitive arrives, so only the bins
+    // in use are touched
+    void add_sparse(const Ref& r, const Binning& binning) {
         alignas(16) int b[4];
         binning.bins_of(r.centre(), b);
         const F4 lo = load(r.lo), hi = load(r.hi);
@@ -201,7 +202,72 @@ struct Bins {
             }
         }
     }
+    void clear() {
+        for (auto& axis : bin) {
+            for (Bin& x : axis)
+                x = Bin{splat(kInfinity), splat(-kInfinity), 0};
+        }
+    }
+    void add(const Ref& r, const Binning& binning) {
+        alignas(16) int b[4];
+        binning.bins_of(r.centre(), b);
+        const F4 lo = load(r.lo), hi = load(r.hi);
+        for (int axis = 0; axis < 3; ++axis) {
+            Bin& x = bin[axis][b[axis]];
+            x.lo = min(lo, x.lo);
+            x.hi = max(hi, x.hi);
+            ++x.count;
+        }
+    }
+    void set_occupied() {
+        for (int axis = 0; axis < 3; ++axis) {
+            occupied[axis] = 0;
+            for (int b = 0; b < kBins; ++b)
+                occupied[axis] |= (bin[axis][b].count != 0 ? 1u : 0u) << b;
+        }
+    }
+    void merge(const Bins& o) {
+        for (int axis = 0; axis < 3; ++axis) {
+            for (int b = 0; b < kBins; ++b) {
+                if (!(o.occupied[axis] >> b & 1u)) continue;
+                Bin& x = bin[axis][b];
+                const Bin& y = o.bin[axis][b];
+                if (occupied[axis] >> b & 1u) {
+                    x.lo = min(y.lo, x.lo);
+                    x.hi = max(y.hi, x.hi);
+                    x.count += y.count;
+                } else {
+                    x = y;
+                }
+            }
+            occupied[axis] |= o.occupied[axis];
+        }
+    }
 };
+
+// Bins refs[first, end). Large ranges alternate between two sets of bins, so that
+// neighbouring primitives (often in the same bins) do not wait on each other's stores
+constexpr std::uint32_t kTwoSetsMin = 64;
+void bin_range(const Ref* refs, std::uint32_t first, std::uint32_t end,
+               const Binning& binning, Bins& bins) {
+    if (end - first < kTwoSetsMin) {
+        for (std::uint32_t k = first; k < end; ++k)
+            bins.add_sparse(refs[k], binning);
+        return;
+    }
+    Bins odd;
+    bins.clear();
+    odd.clear();
+    std::uint32_t k = first;
+    for (; k + 1 < end; k += 2) {
+        bins.add(refs[k], binning);
+        odd.add(refs[k + 1], binning);
+    }
+    if (k < end) bins.add(refs[k], binning);
+    bins.set_occupied();
+    odd.set_occupied();
+    bins.merge(odd);
+}
 
 // The occupied bins of one axis, in order
 int occupied_bins(unsigned occupied, int list[kBins]) {
@@ -228,8 +294,7 @@ float best_split(const Ref* refs, const Task& t, int& best_axis, int& best_bin,
     }
     binning = Binning{t.centres.lo, load(scale)};
     Bins bins;
-    for (std::uint32_t k = t.first; k < t.first + t.count; ++k)
-        bins.add(refs[k], binning);
+    bin_range(refs, t.first, t.first + t.count, binning, bins);
     float best_cost = kInfinity;
     for (int axis = 0; axis < 3; ++axis) {
         int list[kBins];
