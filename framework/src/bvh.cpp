@@ -137,31 +137,20 @@ struct alignas(16) Ref {
     F4 centre() const { return mul(add(xyz(load(lo)), load(hi)), splat(0.5f)); }
 };
 
-// A child of a binary node: its box and its code, a binary node's slot or (with
-// Bvh::kLeaf) a leaf as Bvh::Node::child holds it
-struct Child {
-    float lo[3], hi[3];
-    std::uint32_t code;
-    float half_area() const {
-        const float ex = std::max(hi[0] - lo[0], 0.0f);
-        const float ey = std::max(hi[1] - lo[1], 0.0f);
-        const float ez = std::max(hi[2] - lo[2], 0.0f);
-        return ex * ey + ey * ez + ez * ex;
-    }
-};
-
-// Trivially constructible, so the array of them is allocated without being written
-struct BinaryNode {
-    Child child[2];
-};
-
-// The subtree over refs[first, first + count): its box, its centres' box, its depth, and
-// where its code goes
+// The subtree over refs[first, first + count): its box, its centres' box and its depth
+// in the binary tree
 struct Task {
     Box4 box, centres;
     std::uint32_t first = 0, count = 0;
     int depth = 0;
-    std::uint32_t* code = nullptr;
+};
+
+// A node of the binary SAH tree once decided: a leaf (leaf holds its code, as
+// Bvh::Node::child does) or split into two partitioned children
+struct Item {
+    Task t;
+    std::uint32_t leaf = 0;
+    Task child[2];
 };
 
 // The bin of each axis for a centre c: floor((c - lo) * scale) clamped to [0, kBins - 1]
@@ -377,22 +366,46 @@ void bounds(const Ref* refs, std::uint32_t first, std::uint32_t count, Box4& box
     }
 }
 
+// The 4-wide nodes of one subtree built by one thread, in depth-first order. A child
+// handed to another thread is patched in afterwards (Fixup); the outputs are then laid
+// one after the other in depth-first order of their subtrees
+struct Output {
+    struct Fixup {
+        std::uint32_t node;
+        int slot;
+        const Output* subtree;
+    };
+    std::uint32_t first = 0, count = 0;  // the subtree's primitive slots
+    std::vector<Bvh::Node> nodes;
+    std::vector<Fixup> fixups;
+    std::uint32_t offset = 0;  // of nodes[0] in the finished tree
+};
+
+struct Job {
+    Item item;
+    Output* out;
+};
+
 // The work list the build threads share: subtrees waiting for a thread, and how many
 // subtrees are still unfinished (waiting or being built)
 class Scheduler {
   public:
-    void push(const Task& t) {
+    // A subtree for any thread; its nodes will go to the returned output
+    Output* push(const Item& item) {
         const std::lock_guard<std::mutex> lock(mutex_);
-        waiting_.push_back(t);
+        outputs_.emplace_back();
+        Output* out = &outputs_.back();
+        waiting_.push_back(Job{item, out});
         ++unfinished_;
         wake_.notify_one();
+        return out;
     }
     // The oldest (largest) waiting subtree; false when the whole tree is done
-    bool pop(Task& t) {
+    bool pop(Job& job) {
         std::unique_lock<std::mutex> lock(mutex_);
         wake_.wait(lock, [&] { return !waiting_.empty() || unfinished_ == 0; });
         if (waiting_.empty()) return false;
-        t = waiting_.front();
+        job = waiting_.front();
         waiting_.pop_front();
         return true;
     }
@@ -400,32 +413,40 @@ class Scheduler {
         const std::lock_guard<std::mutex> lock(mutex_);
         if (--unfinished_ == 0) wake_.notify_all();
     }
+    std::deque<Output>& outputs() { return outputs_; }
 
   private:
     std::mutex mutex_;
     std::condition_variable wake_;
-    std::deque<Task> waiting_;
+    std::deque<Job> waiting_;
+    std::deque<Output> outputs_;  // a deque: the addresses handed out stay valid
     std::uint32_t unfinished_ = 0;
 };
 
+// Builds the binary SAH tree and collapses it to four children per node as it goes: a
+// node's children are decided first, then its interior child of largest area is opened
+// (replaced by its two children) until there are four
 struct Builder {
     Ref* refs;
-    BinaryNode* nodes;
     std::uint32_t* prims;
     Scheduler* scheduler;  // null: one thread
 
-    void build(const Task& t) {
+    // Decides item.t: a leaf, or a split with its primitives partitioned
+    void decide(Item& item) const {
+        const Task& t = item.t;
         const auto make_leaf = [&] {
             for (std::uint32_t k = t.first; k < t.first + t.count; ++k)
                 std::memcpy(&prims[k], &refs[k].lo[3], sizeof(std::uint32_t));
-            *t.code = Bvh::kLeaf | t.count << Bvh::kCountShift | t.first;
+            item.leaf = Bvh::kLeaf | t.count << Bvh::kCountShift | t.first;
         };
         if (t.count <= 1) return make_leaf();
         // Deep trees (pathological input): halve by index so the depth stays bounded
-        if (t.depth >= kMaxSahDepth) return split_by_index(t);
+        if (t.depth >= kMaxSahDepth) return split_by_index(item);
         int axis = -1, bin = 0;
         Binning binning;
-        Task left, right;
+        Task& left = item.child[0];
+        Task& right = item.child[1];
+        left = right = Task{};
         const float cost = best_split(refs, t, axis, bin, binning, left.box, right.box);
         // SAH termination: a leaf is cheaper than the split (small leaves only)
         const float leaf_cost = static_cast<float>(t.count);
@@ -434,100 +455,131 @@ struct Builder {
         if (axis < 0 || (t.count <= Bvh::kMaxLeafSize && leaf_cost <= split_cost)) {
             if (axis >= 0 || t.count <= Bvh::kMaxLeafSize) return make_leaf();
             // All centres coincide: split by index so leaves stay small
-            return split_by_index(t);
+            return split_by_index(item);
         }
         const std::uint32_t left_count =
             partition(refs, t, binning, axis, bin, left.centres, right.centres);
-        split(t, left_count, left, right);
+        set_ranges(item, left_count);
     }
 
-    void split_by_index(const Task& t) {
-        Task left, right;
+    void split_by_index(Item& item) const {
+        const Task& t = item.t;
         const std::uint32_t left_count = t.count / 2;
-        bounds(refs, t.first, left_count, left.box, left.centres);
-        bounds(refs, t.first + left_count, t.count - left_count, right.box,
-               right.centres);
-        split(t, left_count, left, right);
+        item.child[0] = item.child[1] = Task{};
+        bounds(refs, t.first, left_count, item.child[0].box, item.child[0].centres);
+        bounds(refs, t.first + left_count, t.count - left_count, item.child[1].box,
+               item.child[1].centres);
+        set_ranges(item, left_count);
     }
 
-    // Makes t an interior node, stored at the slot of its split position, and builds its
-    // children; a large right child may go to another thread
-    void split(const Task& t, std::uint32_t left_count, Task& left, Task& right) {
-        const std::uint32_t slot = t.first + left_count;
-        BinaryNode& node = nodes[slot];
-        *t.code = slot;
-        left.first = t.first;
-        left.count = left_count;
-        right.first = slot;
-        right.count = t.count - left_count;
-        left.depth = right.depth = t.depth + 1;
-        Task* children[2] = {&left, &right};
-        for (int k = 0; k < 2; ++k) {
-            Child& c = node.child[k];
+    static void set_ranges(Item& item, std::uint32_t left_count) {
+        item.child[0].first = item.t.first;
+        item.child[0].count = left_count;
+        item.child[1].first = item.t.first + left_count;
+        item.child[1].count = item.t.count - left_count;
+        item.child[0].depth = item.child[1].depth = item.t.depth + 1;
+    }
+
+    // Builds the 4-wide subtree of a split item into out; returns its node index there.
+    // A large child goes to another thread when there is one
+    std::uint32_t build(const Item& item, Output& out) const {
+        // Open the interior child of largest area until there are four
+        Item kids[4];
+        float area[4];  // -1 for a leaf, below every interior child
+        const auto take = [&](int k, const Task& t) {
+            kids[k].t = t;
+            decide(kids[k]);
+            area[k] = kids[k].leaf ? -1.0f : t.box.half_area();
+        };
+        take(0, item.child[0]);
+        take(1, item.child[1]);
+        int n = 2;
+        while (n < 4) {
+            int widest = 0;
+            for (int k = 1; k < n; ++k) {
+                if (area[k] > area[widest]) widest = k;
+            }
+            if (area[widest] < 0.0f) break;
+            const Task opened[2] = {kids[widest].child[0], kids[widest].child[1]};
+            take(widest, opened[0]);
+            take(n++, opened[1]);
+        }
+        const std::uint32_t self = static_cast<std::uint32_t>(out.nodes.size());
+        out.nodes.emplace_back();
+        Bvh::Node& node = out.nodes.back();
+        for (int k = 0; k < 4; ++k) {
+            // An unused slot: an empty box and a leaf of no primitives
             alignas(16) float lo[4], hi[4];
-            store(lo, children[k]->box.lo);
-            store(hi, children[k]->box.hi);
-            std::copy(lo, lo + 3, c.lo);
-            std::copy(hi, hi + 3, c.hi);
-            children[k]->code = &c.code;
+            store(lo, k < n ? kids[k].t.box.lo : splat(kInfinity));
+            store(hi, k < n ? kids[k].t.box.hi : splat(-kInfinity));
+            for (int a = 0; a < 3; ++a) {
+                node.box[2 * a][k] = lo[a];
+                node.box[2 * a + 1][k] = hi[a];
+            }
+            node.child[k] = k < n ? kids[k].leaf : Bvh::kLeaf;
         }
-        if (scheduler && right.count >= kTaskMin) {
-            scheduler->push(right);
-            build(left);
-            return;
+        // Large interior children but the first go to the work list; the rest are built
+        // here, depth first
+        bool kept = false;
+        for (int k = 0; k < n; ++k) {
+            if (kids[k].leaf || kids[k].t.count < kTaskMin || !scheduler) continue;
+            if (!kept) {
+                kept = true;
+                continue;
+            }
+            out.fixups.push_back({self, k, scheduler->push(kids[k])});
+            kids[k].leaf = Bvh::kLeaf;  // done with here
         }
-        build(left);
-        build(right);
+        for (int k = 0; k < n; ++k) {
+            if (kids[k].leaf) continue;
+            const std::uint32_t child = build(kids[k], out);
+            out.nodes[self].child[k] = child;
+        }
+        return self;
     }
 
     // Builds waiting subtrees until the whole tree is done
-    void work() {
-        Task t;
-        while (scheduler->pop(t)) {
-            build(t);
+    void work() const {
+        Job job;
+        while (scheduler->pop(job)) {
+            job.out->first = job.item.t.first;
+            job.out->count = job.item.t.count;
+            job.out->nodes.reserve(job.item.t.count / 3 + 1);
+            build(job.item, *job.out);
             scheduler->done();
         }
     }
 };
 
-// Collapses the binary subtree of c into 4-wide nodes; returns its child code (a node
-// index or a leaf)
-std::uint32_t collapse(const BinaryNode* binary, const Child& c,
-                       std::vector<Bvh::Node>& nodes) {
-    if (c.code & Bvh::kLeaf) return c.code;
-    // Open the interior child of largest area until there are four
-    const Child* kids[4] = {&binary[c.code].child[0], &binary[c.code].child[1]};
-    // A leaf's area counts as -1, below every interior child's
-    const auto area = [](const Child* k) {
-        return k->code & Bvh::kLeaf ? -1.0f : k->half_area();
-    };
-    float areas[4] = {area(kids[0]), area(kids[1])};
-    int n = 2;
-    while (n < 4) {
-        int widest = 0;
-        for (int k = 1; k < n; ++k) {
-            if (areas[k] > areas[widest]) widest = k;
-        }
-        if (areas[widest] < 0.0f) break;
-        const BinaryNode& opened = binary[kids[widest]->code];
-        kids[widest] = &opened.child[0];
-        kids[n] = &opened.child[1];
-        areas[widest] = area(kids[widest]);
-        areas[n] = area(kids[n]);
-        ++n;
+// Lays the outputs one after the other in depth-first order of their subtrees (by first
+// primitive slot, the enclosing subtree first) and links them
+std::vector<Bvh::Node> join(std::deque<Output>& outputs) {
+    std::vector<Output*> order;
+    size_t total = 0;
+    for (Output& o : outputs) {
+        order.push_back(&o);
+        total += o.nodes.size();
     }
-    const std::uint32_t self = static_cast<std::uint32_t>(nodes.size());
-    nodes.emplace_back();
-    for (int k = 0; k < 4; ++k) {
-        for (int a = 0; a < 3; ++a) {
-            // An unused slot: an empty box and a leaf of no primitives
-            nodes[self].box[2 * a][k] = k < n ? kids[k]->lo[a] : kInfinity;
-            nodes[self].box[2 * a + 1][k] = k < n ? kids[k]->hi[a] : -kInfinity;
+    std::sort(order.begin(), order.end(), [](const Output* a, const Output* b) {
+        return a->first != b->first ? a->first < b->first : a->count > b->count;
+    });
+    std::vector<Bvh::Node> nodes;
+    nodes.reserve(total);
+    for (Output* o : order) {
+        o->offset = static_cast<std::uint32_t>(nodes.size());
+        for (Bvh::Node n : o->nodes) {
+            for (std::uint32_t& c : n.child) {
+                if (!(c & Bvh::kLeaf)) c += o->offset;
+            }
+            nodes.push_back(n);
         }
-        const std::uint32_t code = k < n ? collapse(binary, *kids[k], nodes) : Bvh::kLeaf;
-        nodes[self].child[k] = code;
+        o->nodes = {};
     }
-    return self;
+    for (const Output* o : order) {
+        for (const Output::Fixup& f : o->fixups)
+            nodes[o->offset + f.node].child[f.slot] = f.subtree->offset;
+    }
+    return nodes;
 }
 
 }  // namespace
@@ -542,46 +594,50 @@ void Bvh::build(const std::vector<Aabb>& boxes) {
         throw Error("too many primitives for the BVH: " + std::to_string(boxes.size()) +
                     " (at most " + std::to_string(kFirstMask) + ")");
     const std::uint32_t count = static_cast<std::uint32_t>(boxes.size());
-    // Neither array is written before the build writes it
+    // Not written before the build writes it
     const std::unique_ptr<Ref[]> refs(new Ref[count]);
-    const std::unique_ptr<BinaryNode[]> binary(new BinaryNode[count]);
-    Task root;
-    root.count = count;
+    Item root;
+    root.t.count = count;
     for (std::uint32_t k = 0; k < count; ++k) {
         Ref& r = refs[k];
         const Aabb& b = boxes[k];
         r = Ref{{b.lo.x, b.lo.y, b.lo.z, 0.0f}, {b.hi.x, b.hi.y, b.hi.z, 0.0f}};
         std::memcpy(&r.lo[3], &k, sizeof k);
-        root.box.grow(load(r.lo), load(r.hi));
-        root.centres.grow(r.centre());
-    }
-    Child top{};
-    root.code = &top.code;
-    const unsigned threads =
-        count < kParallelMin ? 1 : std::thread::hardware_concurrency();
-    if (threads <= 1) {
-        Builder{refs.get(), binary.get(), prims_.data(), nullptr}.build(root);
-    } else {
-        Scheduler scheduler;
-        Builder builder{refs.get(), binary.get(), prims_.data(), &scheduler};
-        scheduler.push(root);
-        std::vector<std::thread> helpers;
-        for (unsigned k = 1; k < threads; ++k)
-            helpers.emplace_back([&] { builder.work(); });
-        builder.work();
-        for (std::thread& h : helpers)
-            h.join();
+        root.t.box.grow(load(r.lo), load(r.hi));
+        root.t.centres.grow(r.centre());
     }
     alignas(16) float lo[4], hi[4];
-    store(lo, root.box.lo);
-    store(hi, root.box.hi);
-    std::copy(lo, lo + 3, top.lo);
-    std::copy(hi, hi + 3, top.hi);
+    store(lo, root.t.box.lo);
+    store(hi, root.t.box.hi);
     bounds_.lo = Vec3(lo[0], lo[1], lo[2]);
     bounds_.hi = Vec3(hi[0], hi[1], hi[2]);
-    nodes_.reserve(count / 3 + 1);
-    root_ = collapse(binary.get(), top, nodes_);
-    nodes_.shrink_to_fit();
+    const unsigned threads =
+        count < kParallelMin ? 1 : std::thread::hardware_concurrency();
+    Builder builder{refs.get(), prims_.data(), nullptr};
+    builder.decide(root);
+    if (root.leaf) {
+        root_ = root.leaf;
+        return;
+    }
+    if (threads <= 1) {
+        Output out;
+        out.nodes.reserve(count / 3 + 1);
+        root_ = builder.build(root, out);
+        nodes_ = std::move(out.nodes);
+        nodes_.shrink_to_fit();
+        return;
+    }
+    Scheduler scheduler;
+    builder.scheduler = &scheduler;
+    scheduler.push(root);
+    std::vector<std::thread> helpers;
+    for (unsigned k = 1; k < threads; ++k)
+        helpers.emplace_back([&] { builder.work(); });
+    builder.work();
+    for (std::thread& h : helpers)
+        h.join();
+    nodes_ = join(scheduler.outputs());
+    root_ = 0;  // the root's output comes first
 }
 
 }  // namespace raylab
