@@ -10,6 +10,8 @@
 #include "raylab/bvh.h"
 
 #include <algorithm>
+#include <atomic>
+#include <functional>
 #include <condition_variable>
 #include <cstring>
 #include <deque>
@@ -30,6 +32,8 @@ constexpr float kTraversalCost = 1.0f;  // relative to one primitive test
 constexpr std::uint32_t kParallelMin = 16384;
 // A subtree at least this large is offered to the other threads
 constexpr std::uint32_t kTaskMin = 4096;
+// A node at least this large is binned and partitioned by two threads when one is idle
+constexpr std::uint32_t kForkMin = 32768;
 
 // Four floats (x, y, z and a lane the geometry ignores) in one SSE register where there
 // is SSE2. min and max keep b unless a is smaller (larger), as glm::min/max and minps do
@@ -266,24 +270,25 @@ int occupied_bins(unsigned occupied, int list[kBins]) {
     return n;
 }
 
-// Finds the cheapest split of t over kBins bins along every axis with a non-zero centre
-// extent (all three binned in one pass). Returns the SAH cost; axis stays -1 when there
-// is no split, else left and right get the two sides' boxes. The planes between two
-// occupied bins all give the same cost, so only the first of them is costed
-float best_split(const Ref* refs, const Task& t, int& best_axis, int& best_bin,
-                 Binning& binning, Box4& left, Box4& right) {
+// The binning of t's centres: kBins bins along every axis with a non-zero centre extent
+Binning binning_of(const Task& t, bool active[3]) {
     alignas(16) float lo[4], hi[4], scale[4] = {};
     store(lo, t.centres.lo);
     store(hi, t.centres.hi);
-    bool active[3];
     for (int axis = 0; axis < 3; ++axis) {
         const float extent = hi[axis] - lo[axis];
         active[axis] = extent > 0.0f;
         scale[axis] = active[axis] ? kBins / extent : 0.0f;
     }
-    binning = Binning{t.centres.lo, load(scale)};
-    Bins bins;
-    bin_range(refs, t.first, t.first + t.count, binning, bins);
+    return Binning{t.centres.lo, load(scale)};
+}
+
+// Finds the cheapest split between the bins of the active axes (all three binned in one
+// pass). Returns the SAH cost; axis stays -1 when there is no split, else left and right
+// get the two sides' boxes. The planes between two occupied bins all give the same
+// cost, so only the first of them is costed
+float best_split(const Bins& bins, const bool active[3], int& best_axis, int& best_bin,
+                 Box4& left, Box4& right) {
     float best_cost = kInfinity;
     for (int axis = 0; axis < 3; ++axis) {
         int list[kBins];
@@ -326,31 +331,22 @@ float best_split(const Ref* refs, const Task& t, int& best_axis, int& best_bin,
     return best_cost;
 }
 
-// Moves the refs whose bin along axis is at most split before the others, in the order
-// std::partition (libstdc++) leaves them, and gathers both sides' centre boxes; returns
-// the number on the left
-std::uint32_t partition(Ref* refs, const Task& t, const Binning& binning, int axis,
-                        int split, Box4& left_centres, Box4& right_centres) {
-    Ref* first = refs + t.first;
-    Ref* last = first + t.count;
-    const auto goes_left = [&](const Ref& r) {
-        alignas(16) int bin[4];
-        const F4 c = r.centre();
-        binning.bins_of(c, bin);
-        (bin[axis] <= split ? left_centres : right_centres).grow(c);
-        return bin[axis] <= split;
-    };
+// Moves the refs in [first, last) that go left before the others, in the order
+// std::partition (libstdc++) leaves them: each ref is asked once, before it is moved, so
+// goes_left may also answer by the ref's original position. Returns the number on the
+// left
+template <class GoesLeft>
+std::uint32_t partition(Ref* first, Ref* last, GoesLeft goes_left) {
+    Ref* const begin = first;
     for (;;) {
         for (;; ++first) {
-            if (first == last)
-                return static_cast<std::uint32_t>(first - (refs + t.first));
-            if (!goes_left(*first)) break;
+            if (first == last) return static_cast<std::uint32_t>(first - begin);
+            if (!goes_left(first)) break;
         }
         --last;
         for (;; --last) {
-            if (first == last)
-                return static_cast<std::uint32_t>(first - (refs + t.first));
-            if (goes_left(*last)) break;
+            if (first == last) return static_cast<std::uint32_t>(first - begin);
+            if (goes_left(last)) break;
         }
         std::swap(*first, *last);
         ++first;
@@ -381,47 +377,76 @@ struct Output {
     std::uint32_t offset = 0;  // of nodes[0] in the finished tree
 };
 
-struct Job {
-    Item item;
-    Output* out;
-};
-
-// The work list the build threads share: subtrees waiting for a thread, and how many
-// subtrees are still unfinished (waiting or being built)
+// The work list the build threads share: jobs waiting for a thread, how many jobs are
+// still unfinished (waiting or running) and how many threads wait for one
 class Scheduler {
   public:
-    // A subtree for any thread; its nodes will go to the returned output
-    Output* push(const Item& item) {
+    void push(std::function<void()> job) {
         const std::lock_guard<std::mutex> lock(mutex_);
-        outputs_.emplace_back();
-        Output* out = &outputs_.back();
-        waiting_.push_back(Job{item, out});
+        waiting_.push_back(std::move(job));
         ++unfinished_;
         wake_.notify_one();
-        return out;
     }
-    // The oldest (largest) waiting subtree; false when the whole tree is done
-    bool pop(Job& job) {
-        std::unique_lock<std::mutex> lock(mutex_);
-        wake_.wait(lock, [&] { return !waiting_.empty() || unfinished_ == 0; });
-        if (waiting_.empty()) return false;
-        job = waiting_.front();
-        waiting_.pop_front();
-        return true;
+    // Runs jobs, oldest (largest) first, until all are done
+    void work() {
+        for (;;) {
+            std::function<void()> job;
+            {
+                std::unique_lock<std::mutex> lock(mutex_);
+                ++idle_;
+                wake_.wait(lock, [&] { return !waiting_.empty() || unfinished_ == 0; });
+                --idle_;
+                if (waiting_.empty()) return;
+                job = std::move(waiting_.front());
+                waiting_.pop_front();
+            }
+            job();
+            const std::lock_guard<std::mutex> lock(mutex_);
+            if (--unfinished_ == 0) wake_.notify_all();
+        }
     }
-    void done() {
+    // A hint only: whether a thread waits for work now
+    bool has_idle() const { return idle_.load(std::memory_order_relaxed) > 0; }
+    // An output for a subtree; its address stays valid until the scheduler goes
+    Output* new_output() {
         const std::lock_guard<std::mutex> lock(mutex_);
-        if (--unfinished_ == 0) wake_.notify_all();
+        outputs_.emplace_back();
+        return &outputs_.back();
     }
     std::deque<Output>& outputs() { return outputs_; }
 
   private:
     std::mutex mutex_;
     std::condition_variable wake_;
-    std::deque<Job> waiting_;
-    std::deque<Output> outputs_;  // a deque: the addresses handed out stay valid
+    std::deque<std::function<void()>> waiting_;
+    std::deque<Output> outputs_;
     std::uint32_t unfinished_ = 0;
+    std::atomic<int> idle_{0};
 };
+
+// Runs a and b: b on another thread if one takes it before a is done, else here. Either
+// way the results are the same; only the time differs
+template <class A, class B>
+void fork_join(Scheduler* scheduler, const A& a, const B& b) {
+    if (!scheduler || !scheduler->has_idle()) {
+        a();
+        b();
+        return;
+    }
+    struct State {
+        std::atomic<bool> taken{false}, done{false};
+    };
+    const auto state = std::make_shared<State>();
+    scheduler->push([state, &b] {
+        if (state->taken.exchange(true)) return;
+        b();
+        state->done.store(true, std::memory_order_release);
+    });
+    a();
+    if (!state->taken.exchange(true)) return b();
+    while (!state->done.load(std::memory_order_acquire))
+        std::this_thread::yield();
+}
 
 // Builds the binary SAH tree and collapses it to four children per node as it goes: a
 // node's children are decided first, then its interior child of largest area is opened
@@ -442,12 +467,26 @@ struct Builder {
         if (t.count <= 1) return make_leaf();
         // Deep trees (pathological input): halve by index so the depth stays bounded
         if (t.depth >= kMaxSahDepth) return split_by_index(item);
+        // Large ranges are binned and classified in two halves, on two threads if one is
+        // idle (the bins' boxes and counts, and the flags, are the same either way)
+        const bool halves = scheduler && t.count >= kForkMin && scheduler->has_idle();
+        const std::uint32_t mid = t.first + t.count / 2, end = t.first + t.count;
+        bool active[3];
+        const Binning binning = binning_of(t, active);
+        Bins bins, upper;
+        if (halves) {
+            fork_join(
+                scheduler, [&] { bin_range(refs, t.first, mid, binning, bins); },
+                [&] { bin_range(refs, mid, end, binning, upper); });
+            bins.merge(upper);
+        } else {
+            bin_range(refs, t.first, end, binning, bins);
+        }
         int axis = -1, bin = 0;
-        Binning binning;
         Task& left = item.child[0];
         Task& right = item.child[1];
         left = right = Task{};
-        const float cost = best_split(refs, t, axis, bin, binning, left.box, right.box);
+        const float cost = best_split(bins, active, axis, bin, left.box, right.box);
         // SAH termination: a leaf is cheaper than the split (small leaves only)
         const float leaf_cost = static_cast<float>(t.count);
         const float split_cost =
@@ -457,8 +496,36 @@ struct Builder {
             // All centres coincide: split by index so leaves stay small
             return split_by_index(item);
         }
-        const std::uint32_t left_count =
-            partition(refs, t, binning, axis, bin, left.centres, right.centres);
+        // A ref goes left when its bin along axis is at most bin
+        const auto classify = [&](const Ref& r, Box4& left_centres, Box4& right_centres) {
+            alignas(16) int b[4];
+            const F4 c = r.centre();
+            binning.bins_of(c, b);
+            (b[axis] <= bin ? left_centres : right_centres).grow(c);
+            return b[axis] <= bin;
+        };
+        Ref* const first = refs + t.first;
+        std::uint32_t left_count = 0;
+        if (halves) {
+            std::unique_ptr<bool[]> goes_left(new bool[t.count]);
+            Task upper_left, upper_right;
+            const auto flags = [&](std::uint32_t from, std::uint32_t to, Task& l,
+                                   Task& r) {
+                for (std::uint32_t k = from; k < to; ++k)
+                    goes_left[k - t.first] = classify(refs[k], l.centres, r.centres);
+            };
+            fork_join(
+                scheduler, [&] { flags(t.first, mid, left, right); },
+                [&] { flags(mid, end, upper_left, upper_right); });
+            left.centres.grow(upper_left.centres);
+            right.centres.grow(upper_right.centres);
+            left_count = partition(first, first + t.count,
+                                   [&](const Ref* r) { return goes_left[r - first]; });
+        } else {
+            left_count = partition(first, first + t.count, [&](const Ref* r) {
+                return classify(*r, left.centres, right.centres);
+            });
+        }
         set_ranges(item, left_count);
     }
 
@@ -527,7 +594,9 @@ struct Builder {
                 kept = true;
                 continue;
             }
-            out.fixups.push_back({self, k, scheduler->push(kids[k])});
+            Output* sub = scheduler->new_output();
+            scheduler->push([this, kid = kids[k], sub] { run(kid, *sub); });
+            out.fixups.push_back({self, k, sub});
             kids[k].leaf = Bvh::kLeaf;  // done with here
         }
         for (int k = 0; k < n; ++k) {
@@ -538,16 +607,12 @@ struct Builder {
         return self;
     }
 
-    // Builds waiting subtrees until the whole tree is done
-    void work() const {
-        Job job;
-        while (scheduler->pop(job)) {
-            job.out->first = job.item.t.first;
-            job.out->count = job.item.t.count;
-            job.out->nodes.reserve(job.item.t.count / 3 + 1);
-            build(job.item, *job.out);
-            scheduler->done();
-        }
+    // Builds the subtree of a split item into its own output
+    void run(const Item& item, Output& out) const {
+        out.first = item.t.first;
+        out.count = item.t.count;
+        out.nodes.reserve(item.t.count / 3 + 1);
+        build(item, out);
     }
 };
 
@@ -584,7 +649,7 @@ std::vector<Bvh::Node> join(std::deque<Output>& outputs) {
 
 }  // namespace
 
-void Bvh::build(const std::vector<Aabb>& boxes) {
+void Bvh::build(const std::vector<Aabb>& boxes, unsigned threads) {
     nodes_.clear();
     bounds_ = Aabb{};
     root_ = 0;
@@ -594,50 +659,78 @@ void Bvh::build(const std::vector<Aabb>& boxes) {
         throw Error("too many primitives for the BVH: " + std::to_string(boxes.size()) +
                     " (at most " + std::to_string(kFirstMask) + ")");
     const std::uint32_t count = static_cast<std::uint32_t>(boxes.size());
+    if (threads == 0) threads = std::thread::hardware_concurrency();
+    if (threads == 0 || count < kParallelMin) threads = 1;
+    Scheduler scheduler;
+    Builder builder{nullptr, prims_.data(), threads > 1 ? &scheduler : nullptr};
     // Not written before the build writes it
     const std::unique_ptr<Ref[]> refs(new Ref[count]);
+    builder.refs = refs.get();
+    Output* out = scheduler.new_output();
     Item root;
     root.t.count = count;
-    for (std::uint32_t k = 0; k < count; ++k) {
-        Ref& r = refs[k];
-        const Aabb& b = boxes[k];
-        r = Ref{{b.lo.x, b.lo.y, b.lo.z, 0.0f}, {b.hi.x, b.hi.y, b.hi.z, 0.0f}};
-        std::memcpy(&r.lo[3], &k, sizeof k);
-        root.t.box.grow(load(r.lo), load(r.hi));
-        root.t.centres.grow(r.centre());
+    const auto all = [&] {
+        // The refs and their bounds, in two halves
+        Task upper;
+        const auto convert = [&](std::uint32_t from, std::uint32_t to, Task& t) {
+            for (std::uint32_t k = from; k < to; ++k) {
+                Ref& r = refs[k];
+                const Aabb& b = boxes[k];
+                r = Ref{{b.lo.x, b.lo.y, b.lo.z, 0.0f}, {b.hi.x, b.hi.y, b.hi.z, 0.0f}};
+                std::memcpy(&r.lo[3], &k, sizeof k);
+                t.box.grow(load(r.lo), load(r.hi));
+                t.centres.grow(r.centre());
+            }
+        };
+        fork_join(
+            builder.scheduler, [&] { convert(0, count / 2, root.t); },
+            [&] { convert(count / 2, count, upper); });
+        root.t.box.grow(upper.box);
+        root.t.centres.grow(upper.centres);
+        builder.decide(root);
+        if (!root.leaf) builder.run(root, *out);
+    };
+    if (threads <= 1) {
+        all();
+    } else {
+        scheduler.push(all);
+        std::vector<std::thread> helpers;
+        for (unsigned k = 1; k < threads; ++k)
+            helpers.emplace_back([&] { scheduler.work(); });
+        scheduler.work();
+        for (std::thread& h : helpers)
+            h.join();
     }
     alignas(16) float lo[4], hi[4];
     store(lo, root.t.box.lo);
     store(hi, root.t.box.hi);
     bounds_.lo = Vec3(lo[0], lo[1], lo[2]);
     bounds_.hi = Vec3(hi[0], hi[1], hi[2]);
-    const unsigned threads =
-        count < kParallelMin ? 1 : std::thread::hardware_concurrency();
-    Builder builder{refs.get(), prims_.data(), nullptr};
-    builder.decide(root);
     if (root.leaf) {
         root_ = root.leaf;
-        return;
-    }
-    if (threads <= 1) {
-        Output out;
-        out.nodes.reserve(count / 3 + 1);
-        root_ = builder.build(root, out);
-        nodes_ = std::move(out.nodes);
+    } else if (scheduler.outputs().size() == 1) {
+        nodes_ = std::move(out->nodes);
         nodes_.shrink_to_fit();
-        return;
+    } else {
+        nodes_ = join(scheduler.outputs());
     }
-    Scheduler scheduler;
-    builder.scheduler = &scheduler;
-    scheduler.push(root);
-    std::vector<std::thread> helpers;
-    for (unsigned k = 1; k < threads; ++k)
-        helpers.emplace_back([&] { builder.work(); });
-    builder.work();
-    for (std::thread& h : helpers)
-        h.join();
-    nodes_ = join(scheduler.outputs());
-    root_ = 0;  // the root's output comes first
+    // The root's output comes first, and the root is its first node
+}
+
+int Bvh::depth() const {
+    if (nodes_.empty()) return 0;
+    // Depth-first, the deepest level seen so far
+    std::vector<std::pair<std::uint32_t, int>> stack{{root_, 1}};
+    int deepest = 0;
+    while (!stack.empty()) {
+        const auto [node, level] = stack.back();
+        stack.pop_back();
+        deepest = std::max(deepest, level);
+        for (const std::uint32_t child : nodes_[node].child) {
+            if (!(child & kLeaf)) stack.push_back({child, level + 1});
+        }
+    }
+    return deepest;
 }
 
 }  // namespace raylab
