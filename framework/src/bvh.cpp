@@ -29,9 +29,9 @@ constexpr int kBins = 16;
 constexpr int kMaxSahDepth = 40;        // then index halving: depth <= 40 + 32
 constexpr float kTraversalCost = 1.0f;  // relative to one primitive test
 // Below this many primitives a second thread costs more than it saves
-constexpr std::uint32_t kParallelMin = 16384;
+constexpr std::uint32_t kParallelMin = 4096;
 // A subtree at least this large is offered to the other threads
-constexpr std::uint32_t kTaskMin = 4096;
+constexpr std::uint32_t kTaskMin = 1024;
 // A node at least this large is binned and partitioned by two threads when one is idle
 constexpr std::uint32_t kForkMin = 32768;
 
@@ -68,6 +68,10 @@ inline void store(float* p, F4 a) {
 // Truncated to integers, as static_cast<int>
 inline void store_int(int* p, F4 a) {
     _mm_store_si128(reinterpret_cast<__m128i*>(p), _mm_cvttps_epi32(a.v));
+}
+// Bit k set when a < b in lane k
+inline int less(F4 a, F4 b) {
+    return _mm_movemask_ps(_mm_cmplt_ps(a.v, b.v));
 }
 // Lane 3 set to zero
 inline F4 xyz(F4 a) {
@@ -110,6 +114,12 @@ inline void store(float* p, F4 a) {
 inline void store_int(int* p, F4 a) {
     for (int k = 0; k < 4; ++k)
         p[k] = static_cast<int>(a.v[k]);
+}
+inline int less(F4 a, F4 b) {
+    int bits = 0;
+    for (int k = 0; k < 4; ++k)
+        bits |= (a.v[k] < b.v[k] ? 1 : 0) << k;
+    return bits;
 }
 inline F4 xyz(F4 a) {
     return {{a.v[0], a.v[1], a.v[2], 0.0f}};
@@ -161,10 +171,11 @@ struct Item {
 // (a NaN, from an inactive axis's zero scale, gives bin 0)
 struct Binning {
     F4 lo, scale;
-    void bins_of(F4 c, int bin[4]) const {
-        const F4 x = min(max(mul(sub(c, lo), scale), splat(0.0f)), splat(kBins - 1.0f));
-        store_int(bin, x);
+    // (c - lo) * scale clamped to [0, kBins - 1]: the bins before truncation
+    F4 coordinates(F4 c) const {
+        return min(max(mul(sub(c, lo), scale), splat(0.0f)), splat(kBins - 1.0f));
     }
+    void bins_of(F4 c, int bin[4]) const { store_int(bin, coordinates(c)); }
 };
 
 // The bins of the three axes. A bin's box is valid when its bit in occupied is set
@@ -496,36 +507,46 @@ struct Builder {
             // All centres coincide: split by index so leaves stay small
             return split_by_index(item);
         }
-        // A ref goes left when its bin along axis is at most bin
-        const auto classify = [&](const Ref& r, Box4& left_centres, Box4& right_centres) {
-            alignas(16) int b[4];
+        // A ref goes left when its bin along axis is at most bin, that is when its
+        // clamped bin coordinate is below bin + 1
+        const F4 bound = splat(static_cast<float>(bin + 1));
+        const auto classify = [&](const Ref& r, Box4& l, Box4& rr) {
             const F4 c = r.centre();
-            binning.bins_of(c, b);
-            (b[axis] <= bin ? left_centres : right_centres).grow(c);
-            return b[axis] <= bin;
+            const bool goes_left = less(binning.coordinates(c), bound) >> axis & 1;
+            if (goes_left) {
+                l.grow(c);
+            } else {
+                rr.grow(c);
+            }
+            return goes_left;
         };
         Ref* const first = refs + t.first;
         std::uint32_t left_count = 0;
+        Box4 l, r;  // the centres on each side, kept in registers
         if (halves) {
             std::unique_ptr<bool[]> goes_left(new bool[t.count]);
-            Task upper_left, upper_right;
-            const auto flags = [&](std::uint32_t from, std::uint32_t to, Task& l,
-                                   Task& r) {
+            Box4 upper_l, upper_r;
+            const auto flags = [&](std::uint32_t from, std::uint32_t to, Box4& side_l,
+                                   Box4& side_r) {
+                Box4 ll, rr;
                 for (std::uint32_t k = from; k < to; ++k)
-                    goes_left[k - t.first] = classify(refs[k], l.centres, r.centres);
+                    goes_left[k - t.first] = classify(refs[k], ll, rr);
+                side_l = ll;
+                side_r = rr;
             };
             fork_join(
-                scheduler, [&] { flags(t.first, mid, left, right); },
-                [&] { flags(mid, end, upper_left, upper_right); });
-            left.centres.grow(upper_left.centres);
-            right.centres.grow(upper_right.centres);
+                scheduler, [&] { flags(t.first, mid, l, r); },
+                [&] { flags(mid, end, upper_l, upper_r); });
+            l.grow(upper_l);
+            r.grow(upper_r);
             left_count = partition(first, first + t.count,
-                                   [&](const Ref* r) { return goes_left[r - first]; });
+                                   [&](const Ref* p) { return goes_left[p - first]; });
         } else {
-            left_count = partition(first, first + t.count, [&](const Ref* r) {
-                return classify(*r, left.centres, right.centres);
-            });
+            left_count = partition(first, first + t.count,
+                                   [&](const Ref* p) { return classify(*p, l, r); });
         }
+        left.centres = l;
+        right.centres = r;
         set_ranges(item, left_count);
     }
 
