@@ -69,6 +69,15 @@ inline void store(float* p, F4 a) {
 inline void store_int(int* p, F4 a) {
     _mm_store_si128(reinterpret_cast<__m128i*>(p), _mm_cvttps_epi32(a.v));
 }
+// Lane 3's bits, and lane 3 with n added to its bits (the other lanes unchanged)
+inline std::uint32_t lane3(F4 a) {
+    return static_cast<std::uint32_t>(
+        _mm_cvtsi128_si32(_mm_shuffle_epi32(_mm_castps_si128(a.v), 0xff)));
+}
+inline F4 add_lane3(F4 a, std::uint32_t n) {
+    const __m128i add = _mm_set_epi32(static_cast<int>(n), 0, 0, 0);
+    return {_mm_castsi128_ps(_mm_add_epi32(_mm_castps_si128(a.v), add))};
+}
 // Bit k set when a < b in lane k
 inline int less(F4 a, F4 b) {
     return _mm_movemask_ps(_mm_cmplt_ps(a.v, b.v));
@@ -115,6 +124,16 @@ inline void store_int(int* p, F4 a) {
     for (int k = 0; k < 4; ++k)
         p[k] = static_cast<int>(a.v[k]);
 }
+inline std::uint32_t lane3(F4 a) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &a.v[3], sizeof bits);
+    return bits;
+}
+inline F4 add_lane3(F4 a, std::uint32_t n) {
+    const std::uint32_t bits = lane3(a) + n;
+    std::memcpy(&a.v[3], &bits, sizeof bits);
+    return a;
+}
 inline int less(F4 a, F4 b) {
     int bits = 0;
     for (int k = 0; k < 4; ++k)
@@ -143,12 +162,16 @@ struct Box4 {
     }
 };
 
-// A primitive during the build: its box, and in lane 3 of lo its index (bit for bit,
-// never used in arithmetic). 32 bytes, moved as a whole by the partition
+// A primitive during the build: its box, and in lane 3 of lo its index tagged with
+// kPrimTag, which makes the bits a normal float (2 .. 2^33) that min and max pass through
+// without a denormal; lane 3 of hi is 0. 32 bytes, moved as a whole by the partition
+constexpr std::uint32_t kPrimTag = 0x40000000u;
+static_assert(Bvh::kFirstMask < kPrimTag / 4, "the tag must stay clear of the index");
 struct alignas(16) Ref {
     float lo[4];
     float hi[4];
     F4 centre() const { return mul(add(xyz(load(lo)), load(hi)), splat(0.5f)); }
+    std::uint32_t prim() const { return lane3(load(lo)) & Bvh::kFirstMask; }
 };
 
 // The subtree over refs[first, first + count): its box, its centres' box and its depth
@@ -178,11 +201,14 @@ struct Binning {
     void bins_of(F4 c, int bin[4]) const { store_int(bin, coordinates(c)); }
 };
 
-// The bins of the three axes. A bin's box is valid when its bit in occupied is set
+// The bins of the three axes. A bin's box is valid when its bit in occupied is set. Its
+// count rides in lane 3 of hi, as the bits kCountBase + count (a normal float, so min
+// and max leave it alone; the refs' hi holds 0 there): counting costs no memory access
+constexpr std::uint32_t kCountBase = 0x3f800000u;  // 1.0f
 struct Bins {
     struct Bin {
         F4 lo, hi;
-        std::uint32_t count;
+        std::uint32_t count() const { return lane3(hi) - kCountBase; }
     };
     Bin bin[3][kBins];
     unsigned occupied[3] = {0, 0, 0};
@@ -198,18 +224,18 @@ struct Bins {
             const unsigned bit = 1u << b[axis];
             if (occupied[axis] & bit) {
                 x.lo = min(lo, x.lo);
-                x.hi = max(hi, x.hi);
-                ++x.count;
+                x.hi = add_lane3(max(hi, x.hi), 1);
             } else {
-                x = Bin{lo, hi, 1};
+                x = Bin{lo, add_lane3(hi, kCountBase + 1)};
                 occupied[axis] |= bit;
             }
         }
     }
     void clear() {
+        const F4 empty_hi = add_lane3(xyz(splat(-kInfinity)), kCountBase);
         for (auto& axis : bin) {
             for (Bin& x : axis)
-                x = Bin{splat(kInfinity), splat(-kInfinity), 0};
+                x = Bin{splat(kInfinity), empty_hi};
         }
     }
     void add(const Ref& r, const Binning& binning) {
@@ -219,15 +245,14 @@ struct Bins {
         for (int axis = 0; axis < 3; ++axis) {
             Bin& x = bin[axis][b[axis]];
             x.lo = min(lo, x.lo);
-            x.hi = max(hi, x.hi);
-            ++x.count;
+            x.hi = add_lane3(max(hi, x.hi), 1);
         }
     }
     void set_occupied() {
         for (int axis = 0; axis < 3; ++axis) {
             occupied[axis] = 0;
             for (int b = 0; b < kBins; ++b)
-                occupied[axis] |= (bin[axis][b].count != 0 ? 1u : 0u) << b;
+                occupied[axis] |= (bin[axis][b].count() != 0 ? 1u : 0u) << b;
         }
     }
     void merge(const Bins& o) {
@@ -237,9 +262,10 @@ struct Bins {
                 Bin& x = bin[axis][b];
                 const Bin& y = o.bin[axis][b];
                 if (occupied[axis] >> b & 1u) {
+                    // max of the counts' bits is the larger count; add the smaller
+                    const std::uint32_t smaller = std::min(x.count(), y.count());
                     x.lo = min(y.lo, x.lo);
-                    x.hi = max(y.hi, x.hi);
-                    x.count += y.count;
+                    x.hi = add_lane3(max(y.hi, x.hi), smaller);
                 } else {
                     x = y;
                 }
@@ -313,7 +339,7 @@ float best_split(const Bins& bins, const bool active[3], int& best_axis, int& be
         std::uint32_t n = 0;
         for (int i = n_bins - 1; i > 0; --i) {
             acc.grow(bin[list[i]].lo, bin[list[i]].hi);
-            n += bin[list[i]].count;
+            n += bin[list[i]].count();
             right_area[i] = acc.half_area();
             right_count[i] = n;
         }
@@ -321,7 +347,7 @@ float best_split(const Bins& bins, const bool active[3], int& best_axis, int& be
         n = 0;
         for (int i = 0; i < n_bins - 1; ++i) {
             acc.grow(bin[list[i]].lo, bin[list[i]].hi);
-            n += bin[list[i]].count;
+            n += bin[list[i]].count();
             const float cost =
                 acc.half_area() * n + right_area[i + 1] * right_count[i + 1];
             if (cost < best_cost) {
@@ -472,7 +498,7 @@ struct Builder {
         const Task& t = item.t;
         const auto make_leaf = [&] {
             for (std::uint32_t k = t.first; k < t.first + t.count; ++k)
-                std::memcpy(&prims[k], &refs[k].lo[3], sizeof(std::uint32_t));
+                prims[k] = refs[k].prim();
             item.leaf = Bvh::kLeaf | t.count << Bvh::kCountShift | t.first;
         };
         if (t.count <= 1) return make_leaf();
@@ -698,7 +724,8 @@ void Bvh::build(const std::vector<Aabb>& boxes, unsigned threads) {
                 Ref& r = refs[k];
                 const Aabb& b = boxes[k];
                 r = Ref{{b.lo.x, b.lo.y, b.lo.z, 0.0f}, {b.hi.x, b.hi.y, b.hi.z, 0.0f}};
-                std::memcpy(&r.lo[3], &k, sizeof k);
+                const std::uint32_t tagged = k | kPrimTag;
+                std::memcpy(&r.lo[3], &tagged, sizeof tagged);
                 t.box.grow(load(r.lo), load(r.hi));
                 t.centres.grow(r.centre());
             }
