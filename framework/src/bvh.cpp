@@ -213,8 +213,8 @@ struct Bins {
     Bin bin[3][kBins];
     unsigned occupied[3] = {0, 0, 0};
 
-    // Small ranges: a bin is written when its first primitive arrives, so only the bins
-    // in use are touched
+    // A bin is written when its first primitive arrives, so only the bins in use are
+    // touched
     void add_sparse(const Ref& r, const Binning& binning) {
         alignas(16) int b[4];
         binning.bins_of(r.centre(), b);
@@ -275,14 +275,25 @@ struct Bins {
     }
 };
 
-// Bins refs[first, end). Large ranges alternate between two sets of bins, so that
-// neighbouring primitives (often in the same bins) do not wait on each other's stores
+// Bins refs[first, end). Below 8 primitives only the bins in use are written (a branch
+// per primitive and axis); from 8 on, clearing all 48 bins first is cheaper than the
+// branch's mispredictions; from 64 on, even and odd primitives go to two sets of bins,
+// merged after, so that neighbours (often in the same bins) do not wait on each other's
+// stores
+constexpr std::uint32_t kOneSetMin = 8;
 constexpr std::uint32_t kTwoSetsMin = 64;
 void bin_range(const Ref* refs, std::uint32_t first, std::uint32_t end,
                const Binning& binning, Bins& bins) {
-    if (end - first < kTwoSetsMin) {
+    if (end - first < kOneSetMin) {
         for (std::uint32_t k = first; k < end; ++k)
             bins.add_sparse(refs[k], binning);
+        return;
+    }
+    if (end - first < kTwoSetsMin) {
+        bins.clear();
+        for (std::uint32_t k = first; k < end; ++k)
+            bins.add(refs[k], binning);
+        bins.set_occupied();
         return;
     }
     Bins odd;
