@@ -11,12 +11,14 @@
 
 #include <algorithm>
 #include <atomic>
-#include <functional>
 #include <condition_variable>
 #include <cstring>
 #include <deque>
+#include <exception>
+#include <functional>
 #include <memory>
 #include <mutex>
+#include <system_error>
 #include <thread>
 
 #include "raylab/error.h"
@@ -448,11 +450,19 @@ class Scheduler {
                 job = std::move(waiting_.front());
                 waiting_.pop_front();
             }
-            job();
+            // A failed job (out of memory) is reported after all threads are done
+            std::exception_ptr failed;
+            try {
+                job();
+            } catch (...) {
+                failed = std::current_exception();
+            }
             const std::lock_guard<std::mutex> lock(mutex_);
+            if (failed && !error_) error_ = failed;
             if (--unfinished_ == 0) wake_.notify_all();
         }
     }
+    std::exception_ptr error() const { return error_; }
     // A hint only: whether a thread waits for work now
     bool has_idle() const { return idle_.load(std::memory_order_relaxed) > 0; }
     // An output for a subtree; its address stays valid until the scheduler goes
@@ -470,6 +480,7 @@ class Scheduler {
     std::deque<Output> outputs_;
     std::uint32_t unfinished_ = 0;
     std::atomic<int> idle_{0};
+    std::exception_ptr error_;
 };
 
 // Runs a and b: b on another thread if one takes it before a is done, else here. Either
@@ -487,13 +498,26 @@ void fork_join(Scheduler* scheduler, const A& a, const B& b) {
     const auto state = std::make_shared<State>();
     scheduler->push([state, &b] {
         if (state->taken.exchange(true)) return;
+        struct Done {
+            State& s;
+            ~Done() { s.done.store(true, std::memory_order_release); }
+        } done{*state};
         b();
-        state->done.store(true, std::memory_order_release);
     });
-    a();
+    // b lives in this frame: once another thread has taken it, wait for it, also when a
+    // throws
+    const auto wait = [&] {
+        while (!state->done.load(std::memory_order_acquire))
+            std::this_thread::yield();
+    };
+    try {
+        a();
+    } catch (...) {
+        if (state->taken.exchange(true)) wait();
+        throw;
+    }
     if (!state->taken.exchange(true)) return b();
-    while (!state->done.load(std::memory_order_acquire))
-        std::this_thread::yield();
+    wait();
 }
 
 // Builds the binary SAH tree and collapses it to four children per node as it goes: a
@@ -754,11 +778,19 @@ void Bvh::build(const std::vector<Aabb>& boxes, unsigned threads) {
     } else {
         scheduler.push(all);
         std::vector<std::thread> helpers;
-        for (unsigned k = 1; k < threads; ++k)
-            helpers.emplace_back([&] { scheduler.work(); });
+        try {
+            for (unsigned k = 1; k < threads; ++k)
+                helpers.emplace_back([&] { scheduler.work(); });
+        } catch (const std::system_error&) {
+            // No more threads to be had: the ones there are finish the work
+        }
         scheduler.work();
         for (std::thread& h : helpers)
             h.join();
+        if (scheduler.error()) {
+            prims_.clear();
+            std::rethrow_exception(scheduler.error());
+        }
     }
     alignas(16) float lo[4], hi[4];
     store(lo, root.t.box.lo);
