@@ -1,12 +1,16 @@
 // BVH construction (raylab/bvh.h): a binary tree by binned SAH, after pbrt-v4 §7.3 and
-// Wald, "On fast Construction of SAH-based Bounding Volume Hierarchies" (2007), then
+// Wald, "On fast Construction of SAH-based Bounding Volume Hierarchies" (2007),
 // collapsed to four children per node by pulling up the largest grandchildren (Wald,
-// Benthin and Boulos, "Getting Rid of Packets", 2008).
+// Benthin and Boulos, "Getting Rid of Packets", 2008) as it is built.
 //
 // The tree depends on the boxes only, never on the number of threads or their timing:
-// a binary node is stored at the slot where it splits its primitives (a position no other
-// node splits at), so any thread may build any subtree, and the collapse walks the tree
-// in the same order every time.
+// - a node's split is a function of its primitives (bins merge exactly, and the
+//   partition moves primitives in the order std::partition does);
+// - subtrees of at least kTaskMin primitives are built into their own node lists by any
+//   thread, and the lists are laid out in depth-first order of their subtrees.
+// So the node array and the primitive order are the same bit for bit whatever the
+// number of threads; below kParallelMin primitives the nodes are in plain depth-first
+// order.
 #include "raylab/bvh.h"
 
 #include <algorithm>
@@ -568,8 +572,15 @@ struct Builder {
             // All centres coincide: split by index so leaves stay small
             return split_by_index(item);
         }
-        // A ref goes left when its bin along axis is at most bin, that is when its
-        // clamped bin coordinate is below bin + 1
+        split(item, binning, axis, bin, halves);
+    }
+
+    // Partitions item's refs: those whose bin along axis is at most bin go left, that
+    // is those whose clamped bin coordinate is below bin + 1. With halves, both halves
+    // are classified first (on two threads if one is idle), then moved by the flags
+    void split(Item& item, const Binning& binning, int axis, int bin, bool halves) const {
+        const Task& t = item.t;
+        const std::uint32_t mid = t.first + t.count / 2, end = t.first + t.count;
         const F4 bound = splat(static_cast<float>(bin + 1));
         const auto classify = [&](const Ref& r, Box4& l, Box4& rr) {
             const F4 c = r.centre();
@@ -606,8 +617,8 @@ struct Builder {
             left_count = partition(first, first + t.count,
                                    [&](const Ref* p) { return classify(*p, l, r); });
         }
-        left.centres = l;
-        right.centres = r;
+        item.child[0].centres = l;
+        item.child[1].centres = r;
         set_ranges(item, left_count);
     }
 
@@ -742,9 +753,13 @@ void Bvh::build(const std::vector<Aabb>& boxes, unsigned threads) {
                     " (at most " + std::to_string(kFirstMask) + ")");
     const std::uint32_t count = static_cast<std::uint32_t>(boxes.size());
     if (threads == 0) threads = std::thread::hardware_concurrency();
-    if (threads == 0 || count < kParallelMin) threads = 1;
+    if (threads == 0) threads = 1;
+    // From kParallelMin on, the work goes through the scheduler even on one thread, so
+    // the node lists and their layout are the same whatever the number of threads
+    const bool parallel = count >= kParallelMin;
+    if (!parallel) threads = 1;
     Scheduler scheduler;
-    Builder builder{nullptr, prims_.data(), threads > 1 ? &scheduler : nullptr};
+    Builder builder{nullptr, prims_.data(), parallel ? &scheduler : nullptr};
     // Not written before the build writes it
     const std::unique_ptr<Ref[]> refs(new Ref[count]);
     builder.refs = refs.get();
@@ -773,7 +788,7 @@ void Bvh::build(const std::vector<Aabb>& boxes, unsigned threads) {
         builder.decide(root);
         if (!root.leaf) builder.run(root, *out);
     };
-    if (threads <= 1) {
+    if (!parallel) {
         all();
     } else {
         scheduler.push(all);
