@@ -753,7 +753,8 @@ void Bvh::build(const std::vector<Aabb>& boxes, unsigned threads) {
                     " (at most " + std::to_string(kFirstMask) + ")");
     const std::uint32_t count = static_cast<std::uint32_t>(boxes.size());
     if (threads == 0) threads = std::thread::hardware_concurrency();
-    if (threads == 0) threads = 1;
+    // At least kParallelMin / 2 primitives per thread: starting one costs tens of µs
+    threads = std::max(1u, std::min(threads, count / (kParallelMin / 2)));
     // From kParallelMin on, the work goes through the scheduler even on one thread, so
     // the node lists and their layout are the same whatever the number of threads
     const bool parallel = count >= kParallelMin;

@@ -97,9 +97,10 @@ class Bvh {
     static constexpr std::uint32_t kMaxLeafSize = 4;
 
     /// Builds the tree over one box per primitive: binned SAH (16 bins, leaves of at most
-    /// four), collapsed to 4 wide as it goes. From 16,384 primitives on, the build runs
-    /// on `threads` threads (0: all hardware threads). The tree depends on the boxes
-    /// only, never on the number of threads or their timing.
+    /// four), collapsed to 4 wide as it goes. From 4,096 primitives on, the build runs
+    /// on up to `threads` threads (0: the hardware threads), one per 2,048 primitives at
+    /// most. The tree, node array included, depends on the boxes only, never on the
+    /// number of threads or their timing.
     void build(const std::vector<Aabb>& boxes, unsigned threads = 0);
     /// Interior nodes on the longest path from the root to a leaf (0 for an empty tree or
     /// a single leaf).
