@@ -530,7 +530,7 @@ void fork_join(Scheduler* scheduler, const A& a, const B& b) {
 struct Builder {
     Ref* refs;
     std::uint32_t* prims;
-    Scheduler* scheduler;  // null: one thread
+    Scheduler* scheduler;  // null: all on this thread, below kParallelMin primitives
 
     // Decides item.t: a leaf, or a split with its primitives partitioned
     void decide(Item& item) const {
