@@ -6,11 +6,10 @@
 // The tree depends on the boxes only, never on the number of threads or their timing:
 // - a node's split is a function of its primitives (bins merge exactly, and the
 //   partition moves primitives in the order std::partition does);
-// - subtrees of at least kTaskMin primitives are built into their own node lists by any
-//   thread, and the lists are laid out in depth-first order of their subtrees.
+// - subtrees of at least kTaskMin primitives may be built by other threads into their
+//   own node lists, which join() splices into the depth-first order one thread builds.
 // So the node array and the primitive order are the same bit for bit whatever the
-// number of threads; below kParallelMin primitives the nodes are in plain depth-first
-// order.
+// number of threads.
 #include "raylab/bvh.h"
 
 #include <algorithm>
@@ -416,19 +415,19 @@ void bounds(const Ref* refs, std::uint32_t first, std::uint32_t count, Box4& box
     }
 }
 
-// The 4-wide nodes of one subtree built by one thread, in depth-first order. A child
-// handed to another thread is patched in afterwards (Fixup); the outputs are then laid
-// one after the other in depth-first order of their subtrees
+// The 4-wide nodes of one subtree built by one thread, in depth-first order, except the
+// children handed to other threads: each is a Fixup, child slot of node, whose subtree
+// belongs before nodes[at] in depth-first order. join() splices them in there
 struct Output {
     struct Fixup {
         std::uint32_t node;
         int slot;
-        const Output* subtree;
+        Output* subtree;
+        std::uint32_t at;
     };
-    std::uint32_t first = 0, count = 0;  // the subtree's primitive slots
     std::vector<Bvh::Node> nodes;
     std::vector<Fixup> fixups;
-    std::uint32_t offset = 0;  // of nodes[0] in the finished tree
+    std::vector<std::uint32_t> index;  // of each node in the finished tree
 };
 
 // The work list the build threads share: jobs waiting for a thread, how many jobs are
@@ -530,7 +529,7 @@ void fork_join(Scheduler* scheduler, const A& a, const B& b) {
 struct Builder {
     Ref* refs;
     std::uint32_t* prims;
-    Scheduler* scheduler;  // null: all on this thread, below kParallelMin primitives
+    Scheduler* scheduler;  // null: all on this thread
 
     // Decides item.t: a leaf, or a split with its primitives partitioned
     void decide(Item& item) const {
@@ -681,6 +680,7 @@ struct Builder {
         // Large interior children but the first go to the work list; the rest are built
         // here, depth first
         bool kept = false;
+        size_t fixup[4] = {};
         for (int k = 0; k < n; ++k) {
             if (kids[k].leaf || kids[k].t.count < kTaskMin || !scheduler) continue;
             if (!kept) {
@@ -689,54 +689,77 @@ struct Builder {
             }
             Output* sub = scheduler->new_output();
             scheduler->push([this, kid = kids[k], sub] { run(kid, *sub); });
-            out.fixups.push_back({self, k, sub});
-            kids[k].leaf = Bvh::kLeaf;  // done with here
+            fixup[k] = out.fixups.size() + 1;
+            out.fixups.push_back({self, k, sub, 0});
         }
         for (int k = 0; k < n; ++k) {
-            if (kids[k].leaf) continue;
-            const std::uint32_t child = build(kids[k], out);
-            out.nodes[self].child[k] = child;
+            if (fixup[k]) {
+                out.fixups[fixup[k] - 1].at =
+                    static_cast<std::uint32_t>(out.nodes.size());
+            } else if (!kids[k].leaf) {
+                const std::uint32_t child = build(kids[k], out);
+                out.nodes[self].child[k] = child;
+            }
         }
         return self;
     }
 
     // Builds the subtree of a split item into its own output
     void run(const Item& item, Output& out) const {
-        out.first = item.t.first;
-        out.count = item.t.count;
         out.nodes.reserve(item.t.count / 3 + 1);
         build(item, out);
     }
 };
 
-// Lays the outputs one after the other in depth-first order of their subtrees (by first
-// primitive slot, the enclosing subtree first) and links them
-std::vector<Bvh::Node> join(std::deque<Output>& outputs) {
-    std::vector<Output*> order;
-    size_t total = 0;
-    for (Output& o : outputs) {
-        order.push_back(&o);
-        total += o.nodes.size();
+// Gives o's nodes and, spliced in where they belong, its fixups' subtrees their places
+// in depth-first order from next on. Fixups at the same place: the deeper node's first
+// (it is the later one in depth-first order), then by slot
+void place(Output& o, std::uint32_t& next) {
+    std::sort(o.fixups.begin(), o.fixups.end(),
+              [](const Output::Fixup& a, const Output::Fixup& b) {
+                  if (a.at != b.at) return a.at < b.at;
+                  return a.node != b.node ? a.node > b.node : a.slot < b.slot;
+              });
+    o.index.resize(o.nodes.size());
+    std::uint32_t k = 0;
+    for (const Output::Fixup& f : o.fixups) {
+        for (; k < f.at; ++k)
+            o.index[k] = next++;
+        place(*f.subtree, next);
     }
-    std::sort(order.begin(), order.end(), [](const Output* a, const Output* b) {
-        return a->first != b->first ? a->first < b->first : a->count > b->count;
-    });
-    std::vector<Bvh::Node> nodes;
-    nodes.reserve(total);
-    for (Output* o : order) {
-        o->offset = static_cast<std::uint32_t>(nodes.size());
-        for (Bvh::Node n : o->nodes) {
+    for (; k < o.nodes.size(); ++k)
+        o.index[k] = next++;
+}
+
+// Appends o's nodes and its fixups' subtrees to nodes in depth-first order (the order
+// place() gave them), children renumbered
+void append(const Output& o, std::vector<Bvh::Node>& nodes) {
+    std::uint32_t k = 0;
+    const auto copy_to = [&](std::uint32_t end) {
+        for (; k < end; ++k) {
+            Bvh::Node n = o.nodes[k];
             for (std::uint32_t& c : n.child) {
-                if (!(c & Bvh::kLeaf)) c += o->offset;
+                if (!(c & Bvh::kLeaf)) c = o.index[c];
             }
             nodes.push_back(n);
         }
-        o->nodes = {};
+    };
+    for (const Output::Fixup& f : o.fixups) {
+        copy_to(f.at);
+        append(*f.subtree, nodes);
     }
-    for (const Output* o : order) {
-        for (const Output::Fixup& f : o->fixups)
-            nodes[o->offset + f.node].child[f.slot] = f.subtree->offset;
-    }
+    copy_to(static_cast<std::uint32_t>(o.nodes.size()));
+    for (const Output::Fixup& f : o.fixups)
+        nodes[o.index[f.node]].child[f.slot] = f.subtree->index[0];
+}
+
+// The nodes of all outputs in the depth-first order of one thread's build
+std::vector<Bvh::Node> join(Output& root) {
+    std::uint32_t total = 0;
+    place(root, total);
+    std::vector<Bvh::Node> nodes;
+    nodes.reserve(total);
+    append(root, nodes);
     return nodes;
 }
 
@@ -755,10 +778,7 @@ void Bvh::build(const std::vector<Aabb>& boxes, unsigned threads) {
     if (threads == 0) threads = std::thread::hardware_concurrency();
     // At least kParallelMin / 2 primitives per thread: starting one costs tens of µs
     threads = std::max(1u, std::min(threads, count / (kParallelMin / 2)));
-    // From kParallelMin on, the work goes through the scheduler even on one thread, so
-    // the node lists and their layout are the same whatever the number of threads
-    const bool parallel = count >= kParallelMin;
-    if (!parallel) threads = 1;
+    const bool parallel = count >= kParallelMin && threads > 1;
     Scheduler scheduler;
     Builder builder{nullptr, prims_.data(), parallel ? &scheduler : nullptr};
     // Not written before the build writes it
@@ -819,7 +839,7 @@ void Bvh::build(const std::vector<Aabb>& boxes, unsigned threads) {
         nodes_ = std::move(out->nodes);
         nodes_.shrink_to_fit();
     } else {
-        nodes_ = join(scheduler.outputs());
+        nodes_ = join(*out);
     }
     // The root's output comes first, and the root is its first node
 }
