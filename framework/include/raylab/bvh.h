@@ -97,8 +97,14 @@ class Bvh {
     static constexpr std::uint32_t kMaxLeafSize = 4;
 
     /// Builds the tree over one box per primitive: binned SAH (16 bins, leaves of at most
-    /// four), the two halves of large inputs on two threads, then collapsed to 4 wide.
-    void build(const std::vector<Aabb>& boxes);
+    /// four), collapsed to 4 wide as it goes. From 4,096 primitives on, the build runs
+    /// on up to `threads` threads (0: the hardware threads), one per 2,048 primitives at
+    /// most. The tree, node array included, depends on the boxes only, never on the
+    /// number of threads or their timing.
+    void build(const std::vector<Aabb>& boxes, unsigned threads = 0);
+    /// Interior nodes on the longest path from the root to a leaf (0 for an empty tree or
+    /// a single leaf).
+    int depth() const;
 
     bool empty() const { return prims_.empty(); }
     size_t node_count() const { return nodes_.size(); }
