@@ -91,8 +91,9 @@ void run_scaling_section(const BenchOptions& opt) {
     print_heading(
         "4. Scaling: build, memory and time per ray against mesh size",
         fmt("%s. Meshes: the displaced sphere of section 2 at 1e3 .. %d triangles. "
-            "raylab commit: validation, BVH build (two threads above 16,384 "
-            "primitives) and the engine's slots, median of %d. Embree: rtcCommitScene "
+            "raylab commit: validation, BVH build (all cores from 4,096 "
+            "primitives, one per 2,048) and the engine's slots, median of %d. Embree: "
+            "rtcCommitScene "
             "at the default (MEDIUM) build quality on a device with threads=1 and 2. "
             "Bytes: acceleration = BVH nodes + primitive order + the engine's slots; "
             "total adds the scene's own triangles (76 bytes each: vertices, vertex "

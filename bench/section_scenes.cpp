@@ -233,7 +233,7 @@ void run_scene_section(const BenchOptions& opt) {
         fmt("%s. raylab: reference modules through Scene::closest_hit / any_hit, which "
             "run the reference's engine (raylab/engine.h); module path: the same "
             "modules called once per primitive test through the same BVH. raylab "
-            "commit: validation, BVH build (two threads above 16,384 primitives), the "
+            "commit: validation, BVH build (all cores from 4,096 primitives), the "
             "engine's slots. Embree: default (MEDIUM) build quality, scene flags none or "
             "RTC_SCENE_FLAG_ROBUST, a device with threads=1. Camera rays: %dx%d pixel "
             "centres; shadow rays: the ones render() casts from those hits (recorded "
