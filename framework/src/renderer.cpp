@@ -211,13 +211,21 @@ class PixelShader {
     bool reuse_ = false, keep_ = false;
 };
 
-// What CameraHits are keyed on besides the view and size: the modules that make camera
-// rays and hits, and the engine
-std::vector<const void*> camera_hit_modules(const ModuleTable& m) {
+// What CameraHits are keyed on besides the view and size: the functions that make camera
+// rays and hits. An intersection module counts only where the scene has its primitives
+// (a sphere module cannot change the hits of a scene without spheres), and the engine
+// not at all: it gives the module path's hits bit for bit
+// (tests/framework/test_engine.cpp)
+std::vector<const void*> camera_hit_modules(const ModuleTable& m, const Scene& scene) {
     const auto p = [](auto f) { return reinterpret_cast<const void*>(f); };
-    return {p(m.image_plane_point), p(m.render_tile),        p(m.camera_frame),
-            p(m.camera_constant),   p(m.camera_ray),         p(m.intersect_plane),
-            p(m.intersect_sphere),  p(m.intersect_triangle), m.engine};
+    return {p(m.image_plane_point),
+            p(m.render_tile),
+            p(m.camera_frame),
+            p(m.camera_constant),
+            p(m.camera_ray),
+            scene.planes.empty() ? nullptr : p(m.intersect_plane),
+            scene.spheres.empty() ? nullptr : p(m.intersect_sphere),
+            scene.triangles.empty() ? nullptr : p(m.intersect_triangle)};
 }
 
 bool same_view(const View& a, const View& b) {
@@ -275,7 +283,7 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
         reuse = kept->valid && kept->width == settings.width &&
                 kept->height == settings.height && same_view(kept->view, view) &&
                 std::equal(primitives, primitives + 3, kept->primitives) &&
-                kept->modules == camera_hit_modules(modules) &&
+                kept->modules == camera_hit_modules(modules, scene) &&
                 kept->tiles.size() == static_cast<size_t>(tile_count);
         if (!reuse) {
             kept->clear();
@@ -348,7 +356,7 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
             kept->height = settings.height;
             kept->view = view;
             std::copy(primitives, primitives + 3, kept->primitives);
-            kept->modules = camera_hit_modules(modules);
+            kept->modules = camera_hit_modules(modules, scene);
         }
     }
     for (const Counters& c : counters) {

@@ -25,6 +25,16 @@ Scene lit_plane(const Vec3& light_p, const Vec3& I) {
     return scene;
 }
 
+// The reference's intersection tests under another address: a module the renderer must
+// tell apart from the reference's
+std::optional<Hit> other_triangle(const Ray& r, const Vec3& v0, const Vec3& v1,
+                                  const Vec3& v2) {
+    return reference_modules().intersect_triangle(r, v0, v1, v2);
+}
+std::optional<Hit> other_sphere(const Ray& r, const Sphere& sphere) {
+    return reference_modules().intersect_sphere(r, sphere);
+}
+
 }  // namespace
 
 TEST_SUITE("render") {
@@ -264,17 +274,32 @@ TEST_SUITE("render") {
         CHECK(s.camera_rays_reused == 0);
         s = render(scene, moved, settings, modules, image);
         CHECK(s.camera_rays_reused == pixels);
+        // The module path gives the engine's hits bit for bit: kept hits serve it
         ModuleTable module_path = modules;
         module_path.engine = nullptr;
         s = render(scene, moved, settings, module_path, image);
+        CHECK(s.camera_rays_reused == pixels);
+        // Another triangle module casts; another sphere module does not, while the scene
+        // has no spheres
+        ModuleTable other = module_path;
+        other.intersect_triangle = &other_triangle;
+        s = render(scene, moved, settings, other, image);
         CHECK(s.camera_rays == pixels);
+        other.intersect_sphere = &other_sphere;
+        s = render(scene, moved, settings, other, image);
+        CHECK(s.camera_rays_reused == pixels);
         settings.width = 63;
-        s = render(scene, moved, settings, module_path, image);
+        s = render(scene, moved, settings, other, image);
         CHECK(s.camera_rays == 63 * 48);
         scene.spheres.push_back({Sphere{Vec3(0.0f), 0.3f}, 0});
         scene.commit();
         s = render(scene, moved, settings, module_path, image);
         CHECK(s.camera_rays == 63 * 48);
+        ModuleTable other_sphere_only = module_path;  // the sphere module counts now
+        other_sphere_only.intersect_sphere = &other_sphere;
+        s = render(scene, moved, settings, other_sphere_only, image);
+        CHECK(s.camera_rays == 63 * 48);
+        render(scene, moved, settings, module_path, image);  // kept for module_path again
         plain = settings;
         plain.camera_hits = nullptr;
         render(scene, moved, plain, module_path, fresh);

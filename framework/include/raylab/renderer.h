@@ -50,11 +50,12 @@ inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 26;
 /// light and shading modules), render() shades the kept hits and casts no camera ray.
 /// render() fills it on a frame it cannot reuse it for; before reusing it checks the
 /// image size, the view, the scene's primitive counts and the modules 01-05 it was
-/// filled with, and each pixel's (u, v) (a pixel loop that calls in another order casts
-/// afresh). Modules are taken to be functions of their arguments (the contract). The
-/// owner calls clear() when the scene's geometry changes in place. One sample per pixel
-/// and at most kMaxPixels pixels (72 bytes each): larger or supersampled frames neither
-/// fill nor use it.
+/// filled with (an intersection module only where the scene has its primitives), and
+/// each pixel's (u, v) (a pixel loop that calls in another order casts afresh). Modules
+/// are taken to be functions of their arguments (the contract). The owner calls clear()
+/// when the scene's geometry changes in place. One sample per pixel and at most
+/// kMaxPixels pixels (72 bytes each): larger or supersampled frames neither fill nor use
+/// it.
 struct CameraHits {
     static constexpr std::int64_t kMaxPixels = std::int64_t{1} << 20;  // 1280 x 800
     struct Sample {
@@ -67,8 +68,8 @@ struct CameraHits {
     bool valid = false;
     int width = 0, height = 0;
     View view;
-    size_t primitives[3] = {0, 0, 0};        ///< planes, spheres, triangles
-    std::vector<const void*> modules;        ///< modules 01-05's functions and the engine
+    size_t primitives[3] = {0, 0, 0};  ///< planes, spheres, triangles
+    std::vector<const void*> modules;  ///< the functions of modules 01-05 that matter
     std::vector<std::vector<Sample>> tiles;  ///< per tile, in the pixel loop's call order
 };
 
