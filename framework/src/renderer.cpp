@@ -63,8 +63,6 @@ PinholeCamera make_camera(const ModuleTable& modules, const View& view) {
 
 namespace {
 
-constexpr int kTileSize = 16;
-
 // Per-thread work counters, summed after the frame
 struct alignas(64) Counters {  // one cache line each: no false sharing
     TraceCounters trace;
@@ -228,10 +226,6 @@ std::vector<const void*> camera_hit_modules(const ModuleTable& m, const Scene& s
             scene.triangles.empty() ? nullptr : p(m.intersect_triangle)};
 }
 
-bool same_view(const View& a, const View& b) {
-    return a.eye == b.eye && a.lookat == b.lookat && a.up == b.up && a.fov == b.fov;
-}
-
 // Distance at which the depth view turns black: the far side of the scene's bounds
 float depth_range(const Scene& scene, const View& view) {
     const Aabb box = scene.bounds();
@@ -281,7 +275,7 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
     bool reuse = false;
     if (kept) {
         reuse = kept->valid && kept->width == settings.width &&
-                kept->height == settings.height && same_view(kept->view, view) &&
+                kept->height == settings.height && kept->view == view &&
                 std::equal(primitives, primitives + 3, kept->primitives) &&
                 kept->modules == camera_hit_modules(modules, scene) &&
                 kept->tiles.size() == static_cast<size_t>(tile_count);

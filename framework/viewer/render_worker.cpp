@@ -24,17 +24,16 @@ bool same_lights(const std::vector<PointLight>& a, const std::vector<PointLight>
 static_assert(sizeof(void*) != 8 || (sizeof(RenderSettings) == 88 && sizeof(View) == 40 &&
                                      sizeof(PointLight) == 24),
               "a new field in RenderSettings, View or PointLight: compare it in "
-              "same_frame (viewer/render_worker.cpp), then update these sizes");
+              "same_frame (viewer/render_worker.cpp; View: its operator== in "
+              "raylab/scene.h), then update these sizes");
 
 // True when the reference of job a also serves job b
 bool same_frame(const RenderJob& a, const RenderJob& b) {
     const RenderSettings &s = a.settings, &t = b.settings;
     return a.scene_version == b.scene_version && same_lights(a.lights, b.lights) &&
-           a.ambient == b.ambient && a.view.eye == b.view.eye &&
-           a.view.lookat == b.view.lookat && a.view.up == b.view.up &&
-           a.view.fov == b.view.fov && s.width == t.width && s.height == t.height &&
-           s.mode == t.mode && s.shadows == t.shadows && s.background == t.background &&
-           s.spp == t.spp && s.sampling == t.sampling &&
+           a.ambient == b.ambient && a.view == b.view && s.width == t.width &&
+           s.height == t.height && s.mode == t.mode && s.shadows == t.shadows &&
+           s.background == t.background && s.spp == t.spp && s.sampling == t.sampling &&
            s.aa_threshold == t.aa_threshold && s.light_size == t.light_size &&
            s.light_samples == t.light_samples &&
            s.light_stratified == t.light_stratified && s.seed == t.seed;
@@ -143,21 +142,19 @@ RenderSettings preview_settings(const RenderSettings& full, int factor) {
     return s;
 }
 
-// The tiles of a that differ from b in any pixel (same size), in the renderer's 16 x 16
-// tiles
+// The tiles of a that differ from b in any pixel (same size), in the renderer's tiles
 int changed_tiles(const Image& a, const Image& b, int& total) {
-    constexpr int kTile = 16;
-    const int tiles_x = (a.width + kTile - 1) / kTile;
-    const int tiles_y = (a.height + kTile - 1) / kTile;
+    const int tiles_x = (a.width + kTileSize - 1) / kTileSize;
+    const int tiles_y = (a.height + kTileSize - 1) / kTileSize;
     total = tiles_x * tiles_y;
     std::vector<char> changed(static_cast<size_t>(total), 0);
     for (int j = 0; j < a.height; ++j) {
         const Vec3* ra = &a.pixels[size_t(j) * size_t(a.width)];
         const Vec3* rb = &b.pixels[size_t(j) * size_t(b.width)];
-        char* row = &changed[size_t(j / kTile) * size_t(tiles_x)];
+        char* row = &changed[size_t(j / kTileSize) * size_t(tiles_x)];
         for (int tx = 0; tx < tiles_x; ++tx) {
             if (row[tx]) continue;
-            const int i0 = tx * kTile, n = std::min(kTile, a.width - i0);
+            const int i0 = tx * kTileSize, n = std::min(kTileSize, a.width - i0);
             row[tx] = std::memcmp(ra + i0, rb + i0, sizeof(Vec3) * size_t(n)) != 0;
         }
     }

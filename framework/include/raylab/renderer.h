@@ -43,6 +43,9 @@ PixelSampling parse_pixel_sampling(const std::string& word);
 /// Largest accepted image side and pixel count (about 64 megapixels: 768 MiB of float
 /// RGB).
 inline constexpr int kMaxImageSide = 16384;
+/// The side of the square tiles render() hands to the pixel loop (the last row and column
+/// of tiles may be smaller).
+inline constexpr int kTileSize = 16;
 inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 26;
 
 /// Camera rays and their closest hits, kept from one frame for the next (the viewer's):

@@ -51,6 +51,14 @@ struct View {
     float fov = 53.130102f;      ///< vertical field of view [degrees]; 53.13 is d = 1
 };
 
+/// The same eye, look-at point, up hint and field of view, bit for bit.
+inline bool operator==(const View& a, const View& b) {
+    return a.eye == b.eye && a.lookat == b.lookat && a.up == b.up && a.fov == b.fov;
+}
+inline bool operator!=(const View& a, const View& b) {
+    return !(a == b);
+}
+
 /// Checks a view: finite values, eye != lookat, up not zero and not parallel to the view
 /// direction, fov in (0, 180). Throws raylab::Error naming the problem.
 void validate(const View& view);
