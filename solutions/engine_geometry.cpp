@@ -3,18 +3,22 @@
 //
 // Not a module: no student writes it, and it ships only compiled, inside the reference
 // library, because it repeats the reference's numerics. Each test below computes only t,
-// with exactly the operations of its module (solutions/03_plane.cpp, 04_sphere.cpp;
-// -ffp-contract=off keeps them unfused; the triangle's are the same functions, in
-// watertight_triangle.h), so it accepts exactly the primitives the module accepts, and
-// builds the nearest one's Hit with the module's expressions.
+// with exactly the operations of its module (solutions/03_plane.cpp, 04_sphere.cpp,
+// 05_triangle.cpp; -ffp-contract=off keeps them unfused), so it accepts exactly the
+// primitives the module accepts, and builds the nearest one's Hit with the module's
+// expressions.
 // tests/framework/test_engine.cpp renders scenes both ways and compares, and
-// tests/stress runs on both paths.
+// tests/stress runs on both paths. The tests are repeated here, not shared through a
+// header: each file of solutions/ must stay a self-contained module file, since the
+// class tests grade copies of them as hand-ins (tests/class), and a hand-in has no
+// header beside it.
 #include <algorithm>
 #include <cmath>
 
+#include <glm/gtc/type_ptr.hpp>
+
 #include "raylab/engine.h"
 #include "raylab/scene.h"
-#include "watertight_triangle.h"
 
 namespace raylab::reference {
 
@@ -60,34 +64,93 @@ inline float sphere_t(const Ray& r, const Vec3& centre, float radius, float tmax
     return NAN;
 }
 
-using watertight::WoopRay;
+// The per-ray part of the watertight test (Woop, Benthin and Wald, JCGT 2013): the
+// permutation that makes the largest |w| component z, and the shear
+struct WoopRay {
+    double ox, oy, oz;
+    int kx, ky, kz;
+    double sx, sy, sz;
+    bool valid;  // false: w = 0, every triangle is missed
+
+    explicit WoopRay(const Ray& r) {
+        const float ax = std::abs(r.w.x), ay = std::abs(r.w.y), az = std::abs(r.w.z);
+        kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+        kx = kz == 2 ? 0 : kz + 1;
+        ky = kx == 2 ? 0 : kx + 1;
+        const float* w = glm::value_ptr(r.w);
+        const float* o = glm::value_ptr(r.o);
+        const double Wz = w[kz];
+        valid = Wz != 0.0;
+        sz = valid ? 1.0 / Wz : 0.0;
+        sx = -double(w[kx]) * sz;
+        sy = -double(w[ky]) * sz;
+        ox = o[kx], oy = o[ky], oz = o[kz];
+    }
+    // Components loaded by index: glm's operator[] is a switch, which costs a third of
+    // the test
+    void transform(const Vec3& vertex, double& x, double& y, double& z) const {
+        const float* v = glm::value_ptr(vertex);
+        z = double(v[kz]) - oz;
+        x = (double(v[kx]) - ox) + sx * z;
+        y = (double(v[ky]) - oy) + sy * z;
+    }
+};
 
 // What intersect_triangle's Hit holds besides t, position and normal
 struct TriangleExtra {
     Vec2 uv;
 };
 
-// intersect_triangle's normal (the same function)
+// intersect_triangle's normal (the same expressions)
 inline Vec3 triangle_normal(const Scene::Slot& tri) {
-    double len;
-    return watertight::unit_normal(tri.a, tri.b, tri.c, len);
+    const DVec3 N = glm::cross(DVec3(tri.b) - DVec3(tri.a), DVec3(tri.c) - DVec3(tri.a));
+    const double len = glm::length(N);
+    return Vec3(N * (1.0 / len));
 }
 
-// intersect_triangle's t, or NaN: the same functions (and the same decisions); on a hit,
-// its uv in extra
+// intersect_triangle's t, or NaN: the same operations (and the same decisions); on a
+// hit, its uv in extra
 inline float triangle_t(const Ray& r, const WoopRay& q, const Scene::Slot& tri,
                         float tmax, TriangleExtra& extra) {
-    watertight::Candidate c;
-    if (!watertight::candidate(q, tri.a, tri.b, tri.c, c)) return NAN;
+    if (!q.valid) return NAN;
+    double x0, y0, z0, x1, y1, z1, x2, y2, z2;
+    q.transform(tri.a, x0, y0, z0);
+    q.transform(tri.b, x1, y1, z1);
+    q.transform(tri.c, x2, y2, z2);
+    const double e0 = x1 * y2 - y1 * x2;
+    const double e1 = x2 * y0 - y2 * x0;
+    const double e2 = x0 * y1 - y0 * x1;
+    const bool any_negative = (e0 < 0) | (e1 < 0) | (e2 < 0);
+    const bool any_positive = (e0 > 0) | (e1 > 0) | (e2 > 0);
+    if (any_negative & any_positive) return NAN;
+    const double det = e0 + e1 + e2;
+    if (det == 0.0) return NAN;
+    z0 *= q.sz, z1 *= q.sz, z2 *= q.sz;
+    const double t_scaled = e0 * z0 + e1 * z1 + e2 * z2;
+    const double inv_det = 1.0 / det;
+    const double td = t_scaled * inv_det;
     // The module's last two tests, t's range and then t > 0, in the other order: a
     // candidate behind the nearest hit so far is refused before the bound
-    const float t = static_cast<float>(c.t);
+    const float t = static_cast<float>(td);
     if (!(t >= r.tmin && t <= tmax)) return NAN;
-    if (!watertight::in_front(c)) return NAN;
-    // The module also refuses a triangle whose normal has no length: the scene gives such
-    // a triangle NaN vertices (Scene::Slot), which fail the range test above. The
-    // nearest hit's normal is computed once, by triangle_normal
-    extra.uv = watertight::uv(c);
+    // pbrt-v4 §6.8.7's conservative t > 0, with double's gamma
+    constexpr double u = 0.5 * std::numeric_limits<double>::epsilon();
+    const auto gamma = [](int n) { return n * u / (1 - n * u); };
+    const double max_z = std::max({std::abs(z0), std::abs(z1), std::abs(z2)});
+    const double max_x = std::max({std::abs(x0), std::abs(x1), std::abs(x2)});
+    const double max_y = std::max({std::abs(y0), std::abs(y1), std::abs(y2)});
+    const double dz = gamma(3) * max_z;
+    const double dx = gamma(5) * (max_x + max_z), dy = gamma(5) * (max_y + max_z);
+    const double de = 2 * (gamma(2) * max_x * max_y + dy * max_x + dx * max_y);
+    const double max_e = std::max({std::abs(e0), std::abs(e1), std::abs(e2)});
+    const double dt =
+        3 * (gamma(3) * max_e * max_z + de * max_z + dz * max_e) * std::abs(inv_det);
+    if (!(td > dt)) return NAN;
+    // The module also refuses a triangle whose normal has no length (len = sqrt(N . N)
+    // is > 0 exactly when N . N is): the scene gives such a triangle NaN vertices
+    // (Scene::Slot), which fail the range test above. The nearest hit's normal is
+    // computed once, by triangle_normal
+    extra.uv = Vec2(static_cast<float>(e1 * inv_det), static_cast<float>(e2 * inv_det));
     return t;
 }
 
