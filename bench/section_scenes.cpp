@@ -1,10 +1,12 @@
 // Section 2: raylab against Embree on the same rays (bench/sections.h).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <thread>
 
 #include "mesh.h"
 #include "peer.h"
+#include "raylab/engine.h"
 #include "raylab/scenes.h"
 #include "report.h"
 #include "sections.h"
@@ -92,6 +94,10 @@ struct Tables {
     Table speed2{{"scene", "rays", "query", "count", "raylab Mrays/s", "Embree Mrays/s",
                   "raylab/Embree"},
                  3};
+    Table parts{
+        {"scene", "rays", "query", "Embree ns/ray", "raylab ns/ray", "engine ns/ray",
+         "BVH walk ns/ray", "walk %", "leaf tests and engine %", "completion %"},
+        3};
     Table agree{{"scene", "rays", "peer", "hit/miss agree", "raylab hits only",
                  "peer hits only", "both hit, |dt|/t > 1e-4", "max |dt|/t"},
                 3};
@@ -170,6 +176,66 @@ void two_thread_row(const std::string& name, const Scene& scene,
                       s[1] / s[0], embree_target(name), true);
 }
 
+// Where raylab's time per ray goes, one thread, all passes interleaved with Embree's:
+// - raylab: Scene::closest_hit / any_hit, as in the speed table;
+// - engine: the reference engine's query alone (raylab/engine.h), without completing
+//   the nearest hit (material, shading normal, the hit point refined in double);
+// - BVH walk: Bvh::traverse over the same rays with leaves that test nothing, for a
+//   closest hit with tmax set to the hit's t (about the nodes the query visits); for any
+//   hit the whole ray (an upper bound: the query stops at its first hit).
+// walk %, leaf tests and engine %, completion %: the shares of raylab's time.
+void parts_row(const std::string& name, const Scene& scene, const ModuleTable& modules,
+               const PeerScene* peer, const QuerySet& q, const Traced& mine, int repeats,
+               Table& table) {
+    const GeometryEngine* engine = modules.engine;
+    if (!engine) return;
+    std::vector<Ray> walk_rays = q.rays;
+    if (q.closest) {
+        for (size_t k = 0; k < walk_rays.size(); ++k)
+            if (mine.hit[k]) walk_rays[k].tmax = mine.t[k];
+    }
+    Traced full, peer_out;
+    TraceCounters counters;
+    float sink = 0.0f;
+    std::vector<std::function<void()>> works{
+        [&] { raylab_pass(scene, modules, q, full, counters); },
+        [&] {
+            for (const Ray& r : q.rays) {
+                if (q.closest) {
+                    Hit hit;
+                    sink += engine->closest_hit(scene, r, counters, hit).kind ==
+                                    PrimRef::Kind::none
+                                ? 0.0f
+                                : hit.t;
+                } else {
+                    sink += engine->any_hit(scene, r, counters) ? 1.0f : 0.0f;
+                }
+            }
+        },
+        [&] {
+            std::uint64_t nodes = 0;
+            std::uint32_t leaves = 0;
+            for (const Ray& r : walk_rays)
+                scene.bvh().traverse(
+                    r,
+                    [&](std::uint32_t first, std::uint32_t count, float&) {
+                        leaves += first + count;
+                        return false;
+                    },
+                    nodes);
+            sink += static_cast<float>(leaves & 1u);
+        }};
+    if (peer) works.push_back([&] { peer_pass(*peer, q, peer_out); });
+    const std::vector<double> s = interleaved_median_seconds(repeats, works);
+    if (sink == -1.0f) std::printf(" ");  // keeps the passes' results alive
+    const double n = static_cast<double>(q.rays.size());
+    const auto ns = [&](double seconds) { return fmt("%.1f", 1e9 * seconds / n); };
+    const auto pct = [&](double part) { return fmt("%.0f", 100.0 * part / s[0]); };
+    table.row({name, q.name, q.closest ? "closest" : "any", peer ? ns(s[3]) : "-",
+               ns(s[0]), ns(s[1]), ns(s[2]), pct(std::min(s[2], s[1])),
+               pct(s[1] - std::min(s[2], s[1])), pct(s[0] - s[1])});
+}
+
 void bench_scene(const std::string& name, Scene& scene, const ModuleTable& modules,
                  const BenchOptions& opt, std::uint64_t stream, Tables& tables) {
     std::unique_ptr<PeerScene> peer[2];
@@ -219,6 +285,8 @@ void bench_scene(const std::string& name, Scene& scene, const ModuleTable& modul
         row.push_back(fmt("%.1f", static_cast<double>(counters.bvh_nodes) / n));
         row.push_back(fmt("%.1f", static_cast<double>(counters.intersection_tests) / n));
         tables.speed.row(row);
+        parts_row(name, scene, modules, peer[0].get(), q, mine, opt.repeats,
+                  tables.parts);
     }
     for (const QuerySet& q : sets)
         two_thread_row(name, scene, modules, peer[0].get(), q, opt.repeats,
@@ -255,6 +323,17 @@ void run_scene_section(const BenchOptions& opt) {
     tables.build.print();
     std::printf("### Speed (one thread)\n\n");
     tables.speed.print();
+    std::printf(
+        "### Where the time goes (one thread)\n\n"
+        "ns per ray, all columns timed interleaved. raylab: Scene::closest_hit / any_hit "
+        "as above. engine: the reference engine's query alone (raylab/engine.h), "
+        "without completing the nearest hit (material, shading normal, the hit point "
+        "refined in double, raylab/refine.h). BVH walk: Bvh::traverse over the same "
+        "rays with leaves that test nothing, for a closest hit with tmax at the hit "
+        "(about the nodes the query visits), for any hit the whole ray (an upper "
+        "bound). The shares are of raylab's time: walk, then leaf tests and the rest "
+        "of the engine (engine - walk), then completion (raylab - engine).\n\n");
+    tables.parts.print();
     std::printf("### Speed (two threads, half of the rays each)\n\n");
     tables.speed2.print();
     if (peer_available()) {

@@ -231,6 +231,24 @@ void Bvh::traverse(const Ray& r, Visit&& visit, std::uint64_t& nodes_visited) co
             alignas(16) float t[4];
             int mask = hit_children(node, ray, r.tmin, tmax, t);
             if (mask != 0) {
+                // One child hit (the commonest case): straight down, no stack
+                const int k0 = __builtin_ctz(static_cast<unsigned>(mask));
+                const int rest = mask & (mask - 1);
+                if (rest == 0) {
+                    child = node.child[k0];
+                    continue;
+                }
+                // Two: the farther waits on the stack (on a tie, the later one is taken
+                // first, as the sort below does)
+                if ((rest & (rest - 1)) == 0) {
+                    const int k1 = __builtin_ctz(static_cast<unsigned>(rest));
+                    const bool k0_first = t[k0] < t[k1];
+                    const int near = k0_first ? k0 : k1, far = k0_first ? k1 : k0;
+                    prefetch(node.child[far]);
+                    stack[top++] = Entry{node.child[far], t[far]};
+                    child = node.child[near];
+                    continue;
+                }
                 // Sort the hit children farthest first onto the stack; take the nearest
                 const int first = top;
                 for (; mask != 0; mask &= mask - 1) {
