@@ -308,7 +308,7 @@ void run_scene_section(const BenchOptions& opt) {
             "from the shadow module); random: as many incoherent rays from a sphere "
             "around the scene. Mrays/s: median of %d passes, raylab's and Embree's "
             "interleaved; raylab/Embree: raylab's speed divided by Embree's (1 = as "
-            "fast). nodes/ray, tests/ray: raylab's 4-wide BVH nodes visited and "
+            "fast). nodes/ray, tests/ray: raylab's 8-wide BVH nodes visited and "
             "primitive tests. Two threads: each traces half of the rays, raylab (engine) "
             "and Embree (no flags) interleaved.",
             peer_description().c_str(), opt.width, opt.height, opt.repeats));

@@ -1,6 +1,6 @@
 // BVH construction (raylab/bvh.h): a binary tree by binned SAH, after pbrt-v4 §7.3 and
 // Wald, "On fast Construction of SAH-based Bounding Volume Hierarchies" (2007),
-// collapsed to four children per node by pulling up the largest grandchildren (Wald,
+// collapsed to eight children per node by pulling up the largest grandchildren (Wald,
 // Benthin and Boulos, "Getting Rid of Packets", 2008) as it is built.
 //
 // The tree depends on the boxes only, never on the number of threads or their timing:
@@ -29,9 +29,9 @@ namespace {
 
 using namespace bvh_build;
 
-// Builds the binary SAH tree and collapses it to four children per node as it goes: a
-// node's children are decided first, then its interior child of largest area is opened
-// (replaced by its two children) until there are four
+// Builds the binary SAH tree and collapses it to Bvh::kWidth (eight) children per node as
+// it goes: a node's children are decided first, then its interior child of largest area
+// is opened (replaced by its two children) until there are eight
 struct Builder {
     Ref* refs;
     std::uint32_t* prims;
@@ -145,12 +145,12 @@ struct Builder {
         item.child[0].depth = item.child[1].depth = item.t.depth + 1;
     }
 
-    // Builds the 4-wide subtree of a split item into out; returns its node index there.
+    // Builds the 8-wide subtree of a split item into out; returns its node index there.
     // A large child goes to another thread when there is one
     std::uint32_t build(const Item& item, Output& out) const {
-        // Open the interior child of largest area until there are four
-        Item kids[4];
-        float area[4];  // -1 for a leaf, below every interior child
+        // Open the interior child of largest area until there are eight
+        Item kids[Bvh::kWidth];
+        float area[Bvh::kWidth];  // -1 for a leaf, below every interior child
         const auto take = [&](int k, const Task& t) {
             kids[k].t = t;
             decide(kids[k]);
@@ -159,7 +159,7 @@ struct Builder {
         take(0, item.child[0]);
         take(1, item.child[1]);
         int n = 2;
-        while (n < 4) {
+        while (n < Bvh::kWidth) {
             int widest = 0;
             for (int k = 1; k < n; ++k) {
                 if (area[k] > area[widest]) widest = k;
@@ -172,7 +172,7 @@ struct Builder {
         const std::uint32_t self = static_cast<std::uint32_t>(out.nodes.size());
         out.nodes.emplace_back();
         Bvh::Node& node = out.nodes.back();
-        for (int k = 0; k < 4; ++k) {
+        for (int k = 0; k < Bvh::kWidth; ++k) {
             // An unused slot: an empty box and a leaf of no primitives
             alignas(16) float lo[4], hi[4];
             store(lo, k < n ? kids[k].t.box.lo : splat(kInfinity));
@@ -186,7 +186,7 @@ struct Builder {
         // Large interior children but the first go to the work list; the rest are built
         // here, depth first
         bool kept = false;
-        size_t fixup[4] = {};
+        size_t fixup[Bvh::kWidth] = {};
         for (int k = 0; k < n; ++k) {
             if (kids[k].leaf || kids[k].t.count < kTaskMin || !scheduler) continue;
             if (!kept) {

@@ -17,7 +17,7 @@
 
 namespace raylab::bvh_build {
 
-// The 4-wide nodes of one subtree built by one thread, in depth-first order, except the
+// The 8-wide nodes of one subtree built by one thread, in depth-first order, except the
 // children handed to other threads: each is a Fixup, child slot of node, whose subtree
 // belongs before nodes[at] in depth-first order. join() splices them in there
 struct Output {

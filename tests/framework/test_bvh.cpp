@@ -73,7 +73,7 @@ void check_permutation(const Bvh& bvh, size_t n) {
     }
 }
 
-// The binary tree's depth is at most 40 SAH levels then 32 halvings; the 4-wide tree,
+// The binary tree's depth is at most 40 SAH levels then 32 halvings; the 8-wide tree,
 // which opens binary nodes, is no deeper
 constexpr int kMaxDepth = 72;
 
@@ -176,7 +176,7 @@ TEST_SUITE("bvh") {
         along_x.o = Vec3(-20.0f, 3.0f, 3.0f);
         cases.push_back({"30,000 points, 15,000 coincident", points, along_x, 15000});
         // 50 copies each of flat boxes at x = 16^j, j = -31 .. 31: every SAH split peels
-        // off the largest x, the deepest chain float allows (the 4-wide tree must stay
+        // off the largest x, the deepest chain float allows (the 8-wide tree must stay
         // within the 72 levels traversal's stack is sized for)
         std::vector<Aabb> chain;
         for (int copy = 0; copy < 50; ++copy) {

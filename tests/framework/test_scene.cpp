@@ -111,7 +111,7 @@ TEST_SUITE("scene") {
         }
     }
 
-    TEST_CASE("the 4-wide slab test keeps rays lying in a box face's plane") {
+    TEST_CASE("the SIMD slab test keeps rays lying in a box face's plane") {
         // A 16 x 16 grid of quads in x in [-1, 0], y in [-1, 1] at z = 0, with the axes
         // rotated so that x is each axis in turn: enough for interior nodes, whose child
         // boxes have faces at x = 0. Rays at x = 0 along w.x = +-0 give 0 * inf = NaN for
