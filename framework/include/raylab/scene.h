@@ -66,7 +66,7 @@ void validate(const View& view);
 /// Work counters of the queries; one per thread, summed per frame.
 struct TraceCounters {
     std::uint64_t intersection_tests = 0;  ///< primitive tests (plane, sphere, triangle)
-    std::uint64_t bvh_nodes = 0;  ///< BVH nodes (8-wide) whose children's boxes were tested
+    std::uint64_t bvh_nodes = 0;           ///< BVH nodes whose child boxes were tested
 };
 
 class Scene {
