@@ -215,14 +215,17 @@ void parts_row(const std::string& name, const Scene& scene, const ModuleTable& m
         [&] {
             std::uint64_t nodes = 0;
             std::uint32_t leaves = 0;
-            for (const Ray& r : walk_rays)
-                scene.bvh().traverse(
-                    r,
-                    [&](std::uint32_t first, std::uint32_t count, float&) {
-                        leaves += first + count;
-                        return false;
-                    },
-                    nodes);
+            const auto leaf = [&](std::uint32_t first, std::uint32_t count, float&) {
+                leaves += first + count;
+                return false;
+            };
+            for (const Ray& r : walk_rays) {
+                if (q.closest) {
+                    scene.bvh().traverse(r, leaf, nodes);
+                } else {
+                    scene.bvh().traverse_any(r, leaf, nodes);
+                }
+            }
             sink += static_cast<float>(leaves & 1u);
         }};
     if (peer) works.push_back([&] { peer_pass(*peer, q, peer_out); });

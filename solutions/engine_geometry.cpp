@@ -227,7 +227,7 @@ bool any_hit(const Scene& scene, const Ray& r, TraceCounters& counters) {
     }
     const WoopRay q(r);
     bool hit = false;
-    scene.bvh().traverse(
+    scene.bvh().traverse_any(
         r,
         [&](std::uint32_t first, std::uint32_t count, float&) {
             for (std::uint32_t k = first; k < first + count && !hit; ++k) {

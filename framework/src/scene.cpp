@@ -289,7 +289,7 @@ bool Scene::any_hit(const ModuleTable& modules, const Ray& r,
     const std::uint32_t sphere_count = static_cast<std::uint32_t>(spheres.size());
     const std::uint32_t* prims = bvh_.prims().data();
     bool hit = false;
-    bvh_.traverse(
+    bvh_.traverse_any(
         r,
         [&](std::uint32_t first, std::uint32_t count, float&) {
             for (std::uint32_t k = first; k < first + count && !hit; ++k) {

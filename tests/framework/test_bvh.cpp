@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "raylab/bvh.h"
@@ -104,30 +105,38 @@ TEST_SUITE("bvh") {
 
     TEST_CASE("a ray visits every leaf holding a box it meets, in leaves of 1 to 4") {
         // Node boxes that failed to contain a child, or a leaf's box one of its
-        // primitives, would hide that primitive from some ray
+        // primitives, would hide that primitive from some ray; both walks, the sorted one
+        // (closest hit) and the any-hit one, visit each such leaf once
         for (const int n : {100, 30000}) {
             INFO("boxes: " << n << ", seeds 13 and 14");
             const std::vector<Aabb> boxes = random_boxes(13, n);
             Bvh bvh;
             bvh.build(boxes);
             for (const Ray& r : random_rays(14, 300)) {
-                std::vector<char> visited(boxes.size(), 0);
-                std::uint64_t nodes = 0;
-                bvh.traverse(
-                    r,
-                    [&](std::uint32_t first, std::uint32_t count, float&) {
+                for (const bool any : {false, true}) {
+                    const std::string walk = any ? "traverse_any" : "traverse";
+                    INFO(walk);
+                    std::vector<char> visited(boxes.size(), 0);
+                    std::uint64_t nodes = 0;
+                    const auto visit = [&](std::uint32_t first, std::uint32_t count,
+                                           float&) {
                         CHECK(count >= 1);
                         CHECK(count <= Bvh::kMaxLeafSize);
                         for (std::uint32_t k = first; k < first + count; ++k)
-                            visited[bvh.prims()[k]] = 1;
+                            CHECK(visited[bvh.prims()[k]]++ == 0);
                         return false;
-                    },
-                    nodes);
-                for (size_t p = 0; p < boxes.size(); ++p) {
-                    if (box_entry(RaySlabs(r), boxes[p], r.tmin, r.tmax) == kInfinity)
-                        continue;
-                    INFO(r << " meets box " << p);
-                    CHECK(visited[p] == 1);
+                    };
+                    if (any) {
+                        bvh.traverse_any(r, visit, nodes);
+                    } else {
+                        bvh.traverse(r, visit, nodes);
+                    }
+                    for (size_t p = 0; p < boxes.size(); ++p) {
+                        if (box_entry(RaySlabs(r), boxes[p], r.tmin, r.tmax) == kInfinity)
+                            continue;
+                        INFO(r << " meets box " << p);
+                        CHECK(visited[p] == 1);
+                    }
                 }
             }
         }

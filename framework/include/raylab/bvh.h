@@ -127,9 +127,22 @@ class Bvh {
     /// and a reference to the current tmax, which it may shrink (closest hit); it returns
     /// true to stop (any hit). nodes_visited counts the interior nodes tested.
     template <class Visit>
-    void traverse(const Ray& r, Visit&& visit, std::uint64_t& nodes_visited) const;
+    void traverse(const Ray& r, Visit&& visit, std::uint64_t& nodes_visited) const {
+        walk<true>(r, visit, nodes_visited);
+    }
+    /// The same for an any-hit query: a node's third and further hit children are not
+    /// sorted, only the nearer of two is taken first (the query stops at any hit, and a
+    /// shadow ray's nearest boxes hold the surface it leaves, which it cannot hit).
+    /// Measured on raylab-bench's shadow rays: faster than sorting on the large mesh,
+    /// slower for closest hits, which sorting lets skip what lies behind a hit.
+    template <class Visit>
+    void traverse_any(const Ray& r, Visit&& visit, std::uint64_t& nodes_visited) const {
+        walk<false>(r, visit, nodes_visited);
+    }
 
   private:
+    template <bool Sorted, class Visit>
+    void walk(const Ray& r, Visit& visit, std::uint64_t& nodes_visited) const;
     // The ray, broadcast for the SSE slab test; near[a] names the box row the ray
     // enters by along axis a (lo for a positive direction, hi for a negative one)
     struct Ray4 {
@@ -206,8 +219,8 @@ inline int Bvh::hit_children(const Node& n, const Ray4& r, float tmin, float tma
 #endif
 }
 
-template <class Visit>
-void Bvh::traverse(const Ray& r, Visit&& visit, std::uint64_t& nodes_visited) const {
+template <bool Sorted, class Visit>
+void Bvh::walk(const Ray& r, Visit& visit, std::uint64_t& nodes_visited) const {
     if (prims_.empty()) return;
     float tmax = r.tmax;
     if (root_ & kLeaf) {
@@ -265,15 +278,18 @@ void Bvh::traverse(const Ray& r, Visit&& visit, std::uint64_t& nodes_visited) co
                     child = node.child[near];
                     continue;
                 }
-                // Sort the hit children farthest first onto the stack; take the nearest
+                // Sort the hit children farthest first onto the stack (any hit: in slot
+                // order); take the top one
                 const int first = top;
                 for (; mask != 0; mask &= mask - 1) {
                     const int k = __builtin_ctz(static_cast<unsigned>(mask));
                     const Entry e{node.child[k], t[k]};
                     prefetch(e.child);
                     int j = top++;
-                    for (; j > first && stack[j - 1].t_enter < e.t_enter; --j)
-                        stack[j] = stack[j - 1];
+                    if (Sorted) {
+                        for (; j > first && stack[j - 1].t_enter < e.t_enter; --j)
+                            stack[j] = stack[j - 1];
+                    }
                     stack[j] = e;
                 }
                 child = stack[--top].child;
