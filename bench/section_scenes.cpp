@@ -180,9 +180,10 @@ void two_thread_row(const std::string& name, const Scene& scene,
 // - raylab: Scene::closest_hit / any_hit, as in the speed table;
 // - engine: the reference engine's query alone (raylab/engine.h), without completing
 //   the nearest hit (material, shading normal, the hit point refined in double);
-// - BVH walk: Bvh::traverse over the same rays with leaves that test nothing, for a
-//   closest hit with tmax set to the hit's t (about the nodes the query visits); for any
-//   hit the whole ray (an upper bound: the query stops at its first hit).
+// - BVH walk: the query's walk (Bvh::traverse, traverse_any) over the same rays with
+//   leaves that test nothing, for a closest hit with tmax set to the hit's t (about the
+//   nodes the query visits); for any hit the whole ray (an upper bound: the query stops
+//   at its first hit).
 // walk %, leaf tests and engine %, completion %: the shares of raylab's time.
 void parts_row(const std::string& name, const Scene& scene, const ModuleTable& modules,
                const PeerScene* peer, const QuerySet& q, const Traced& mine, int repeats,
@@ -331,8 +332,9 @@ void run_scene_section(const BenchOptions& opt) {
         "ns per ray, all columns timed interleaved. raylab: Scene::closest_hit / any_hit "
         "as above. engine: the reference engine's query alone (raylab/engine.h), "
         "without completing the nearest hit (material, shading normal, the hit point "
-        "refined in double, raylab/refine.h). BVH walk: Bvh::traverse over the same "
-        "rays with leaves that test nothing, for a closest hit with tmax at the hit "
+        "refined in double, raylab/refine.h). BVH walk: the query's walk "
+        "(Bvh::traverse, traverse_any) over the same rays with leaves that test nothing, "
+        "for a closest hit with tmax at the hit "
         "(about the nodes the query visits), for any hit the whole ray (an upper "
         "bound). The shares are of raylab's time: walk, then leaf tests and the rest "
         "of the engine (engine - walk), then completion (raylab - engine).\n\n");

@@ -166,8 +166,11 @@ inline void prefetch_primitive(const Scene& scene, std::uint32_t k) {
     const std::uint32_t p = scene.bvh().prims()[k];
     const size_t sphere_count = scene.spheres.size();
     const auto lines = [](const auto& record) {
+        // A record can straddle three cache lines: one prefetch per 64 bytes, and the
+        // last
         const char* first = reinterpret_cast<const char*>(&record);
-        _mm_prefetch(first, _MM_HINT_T0);
+        for (size_t at = 0; at < sizeof(record); at += 64)
+            _mm_prefetch(first + at, _MM_HINT_T0);
         _mm_prefetch(first + sizeof(record) - 1, _MM_HINT_T0);
     };
     if (p < sphere_count) {

@@ -142,6 +142,42 @@ TEST_SUITE("bvh") {
         }
     }
 
+    TEST_CASE("a box the slab test keeps just past tmax is visited by both walks") {
+        // Found by review: the slab test keeps a box entered within kSlabGrow past tmax,
+        // but a child waiting on the stack was dropped by a comparison without it
+        std::vector<Aabb> boxes;
+        for (int k = 0; k < 12; ++k)
+            boxes.push_back(
+                Aabb{Vec3(0.05f * k, -1.0f, -1.0f), Vec3(0.05f * k + 0.01f, 1.0f, 1.0f)});
+        boxes.push_back(
+            Aabb{Vec3(std::nextafter(1.0f, 2.0f), -1.0f, -1.0f), Vec3(1.5f, 1.0f, 1.0f)});
+        Bvh bvh;
+        bvh.build(boxes);
+        REQUIRE(bvh.node_count() >= 1);
+        Ray r;
+        r.o = Vec3(0.0f);
+        r.w = Vec3(1.0f, 0.0f, 0.0f);
+        r.tmax = 1.0f;
+        REQUIRE(box_entry(RaySlabs(r), boxes.back(), r.tmin, r.tmax) != kInfinity);
+        for (const bool any : {false, true}) {
+            const std::string walk = any ? "traverse_any" : "traverse";
+            INFO(walk);
+            std::vector<int> visited(boxes.size(), 0);
+            std::uint64_t nodes = 0;
+            const auto visit = [&](std::uint32_t first, std::uint32_t count, float&) {
+                for (std::uint32_t k = first; k < first + count; ++k)
+                    ++visited[bvh.prims()[k]];
+                return false;
+            };
+            if (any) {
+                bvh.traverse_any(r, visit, nodes);
+            } else {
+                bvh.traverse(r, visit, nodes);
+            }
+            CHECK(visited.back() == 1);
+        }
+    }
+
     TEST_CASE("the tree is the same with 1, 2 and 3 threads, and on every run") {
         // 40,000 boxes: above the 16,384 from which the build uses threads
         const std::vector<Aabb> boxes = random_boxes(15, 40000);
