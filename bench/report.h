@@ -38,6 +38,9 @@ double median(std::vector<double> v);
 /// The q-quantile (0..1) of v by nearest rank; NaN for an empty v.
 double quantile(std::vector<double> v, double q);
 
+/// Where timed loops store a result, so that the compiler keeps the work that made it.
+inline volatile float g_sink = 0.0f;
+
 /// Wall-clock seconds since start.
 inline double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start)

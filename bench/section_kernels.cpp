@@ -13,9 +13,6 @@ namespace raylab::bench {
 
 namespace {
 
-// Keeps the timed loops' results alive
-volatile float g_sink = 0.0f;
-
 // What one kernel did on one ray set
 struct Outcome {
     double ns = 0.0;              // median ns per test

@@ -278,12 +278,14 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
     CameraHits* const kept = keepable ? settings.camera_hits : nullptr;
     const size_t primitives[3] = {scene.planes.size(), scene.spheres.size(),
                                   scene.triangles.size()};
+    const std::vector<const void*> hit_modules =
+        kept ? camera_hit_modules(modules, scene) : std::vector<const void*>{};
     bool reuse = false;
     if (kept) {
         reuse = kept->valid && kept->width == settings.width &&
                 kept->height == settings.height && kept->view == view &&
                 std::equal(primitives, primitives + 3, kept->primitives) &&
-                kept->modules == camera_hit_modules(modules, scene) &&
+                kept->modules == hit_modules &&
                 kept->tiles.size() == static_cast<size_t>(tile_count);
         if (!reuse) {
             kept->clear();
@@ -356,7 +358,7 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
             kept->height = settings.height;
             kept->view = view;
             std::copy(primitives, primitives + 3, kept->primitives);
-            kept->modules = camera_hit_modules(modules, scene);
+            kept->modules = hit_modules;
         }
     }
     for (const Counters& c : counters) {
