@@ -113,7 +113,7 @@ std::vector<QuerySet> query_sets(const Scene& scene, const ModuleTable& modules,
     return sets;
 }
 
-// Build times: raylab's commit (validation + binned SAH build + slots), Embree's
+// Build times: raylab's commit (validation + binned SAH build), Embree's
 // rtcCommitScene on a one-thread device, with and without RTC_SCENE_FLAG_ROBUST. Leaves
 // the last Embree scenes in peer (null without Embree).
 void bench_build(const std::string& name, Scene& scene, const BenchOptions& opt,
@@ -299,8 +299,8 @@ void run_scene_section(const BenchOptions& opt) {
         fmt("%s. raylab: reference modules through Scene::closest_hit / any_hit, which "
             "run the reference's engine (raylab/engine.h); module path: the same "
             "modules called once per primitive test through the same BVH. raylab "
-            "commit: validation, BVH build (all cores from 4,096 primitives), the "
-            "engine's slots. Embree: default (MEDIUM) build quality, scene flags none or "
+            "commit: validation and BVH build (all cores from 4,096 primitives). Embree: "
+            "default (MEDIUM) build quality, scene flags none or "
             "RTC_SCENE_FLAG_ROBUST, a device with threads=1. Camera rays: %dx%d pixel "
             "centres; shadow rays: the ones render() casts from those hits (recorded "
             "from the shadow module); random: as many incoherent rays from a sphere "

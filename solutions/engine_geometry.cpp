@@ -17,10 +17,6 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#if defined(__SSE2__)
-#include <xmmintrin.h>
-#endif
-
 #include "raylab/engine.h"
 #include "raylab/scene.h"
 
@@ -106,21 +102,22 @@ struct TriangleExtra {
 };
 
 // intersect_triangle's normal (the same expressions)
-inline Vec3 triangle_normal(const Scene::Slot& tri) {
-    const DVec3 N = glm::cross(DVec3(tri.b) - DVec3(tri.a), DVec3(tri.c) - DVec3(tri.a));
+inline Vec3 triangle_normal(const SceneTriangle& tri) {
+    const DVec3 N =
+        glm::cross(DVec3(tri.v1) - DVec3(tri.v0), DVec3(tri.v2) - DVec3(tri.v0));
     const double len = glm::length(N);
     return Vec3(N * (1.0 / len));
 }
 
 // intersect_triangle's t, or NaN: the same operations (and the same decisions); on a
-// hit, its uv in extra
-inline float triangle_t(const Ray& r, const WoopRay& q, const Scene::Slot& tri,
-                        float tmax, TriangleExtra& extra) {
+// hit, its uv in extra. degenerate: the scene's flag for this triangle
+inline float triangle_t(const Ray& r, const WoopRay& q, const SceneTriangle& tri,
+                        bool degenerate, float tmax, TriangleExtra& extra) {
     if (!q.valid) return NAN;
     double x0, y0, z0, x1, y1, z1, x2, y2, z2;
-    q.transform(tri.a, x0, y0, z0);
-    q.transform(tri.b, x1, y1, z1);
-    q.transform(tri.c, x2, y2, z2);
+    q.transform(tri.v0, x0, y0, z0);
+    q.transform(tri.v1, x1, y1, z1);
+    q.transform(tri.v2, x2, y2, z2);
     const double e0 = x1 * y2 - y1 * x2;
     const double e1 = x2 * y0 - y2 * x0;
     const double e2 = x0 * y1 - y0 * x1;
@@ -150,48 +147,44 @@ inline float triangle_t(const Ray& r, const WoopRay& q, const Scene::Slot& tri,
     const double dt =
         3 * (gamma(3) * max_e * max_z + de * max_z + dz * max_e) * std::abs(inv_det);
     if (!(td > dt)) return NAN;
-    // The module also refuses a triangle whose normal has no length (len = sqrt(N . N)
-    // is > 0 exactly when N . N is): the scene gives such a triangle NaN vertices
-    // (Scene::Slot), which fail the range test above. The nearest hit's normal is
-    // computed once, by triangle_normal
+    // The module also refuses a triangle whose normal has no length: the scene marks
+    // those at commit() (Scene::degenerate). The nearest hit's normal is computed once,
+    // by triangle_normal
+    if (degenerate) return NAN;
     extra.uv = Vec2(static_cast<float>(e1 * inv_det), static_cast<float>(e2 * inv_det));
     return t;
 }
 
-// Asks for the scene's record of the primitive in slot k, which completing the hit reads
-// (material, vertex normals, the vertices the hit point is refined on), while the walk
-// goes on: on rays through a large mesh it is rarely in the cache
-inline void prefetch_primitive(const Scene& scene, std::uint32_t k) {
-#if defined(__SSE2__)
-    const std::uint32_t p = scene.bvh().prims()[k];
-    const size_t sphere_count = scene.spheres.size();
-    const auto lines = [](const auto& record) {
-        // A record can straddle three cache lines: one prefetch per 64 bytes, and the
-        // last
-        const char* first = reinterpret_cast<const char*>(&record);
-        for (size_t at = 0; at < sizeof(record); at += 64)
-            _mm_prefetch(first + at, _MM_HINT_T0);
-        _mm_prefetch(first + sizeof(record) - 1, _MM_HINT_T0);
-    };
-    if (p < sphere_count) {
-        lines(scene.spheres[p]);
-    } else {
-        lines(scene.triangles[p - sphere_count]);
-    }
-#else
-    (void)scene, (void)k;
-#endif
-}
+// The scene's spheres and triangles as the BVH's slots name them (spheres first,
+// triangles after them), read once per query
+struct Primitives {
+    const std::uint32_t* order;  // slot -> primitive
+    const SceneSphere* spheres;
+    const SceneTriangle* triangles;
+    std::uint32_t sphere_count;
+    const Scene& scene;
+    bool any_degenerate;
 
-// t of the primitive in slot k, or NaN (a scene without spheres skips the load of the
-// slot's primitive index)
-inline float slot_t(const Scene& scene, const Ray& r, const WoopRay& q, std::uint32_t k,
-                    float tmax, TriangleExtra& extra) {
-    const Scene::Slot& slot = scene.slots()[k];
-    if (!scene.spheres.empty() && scene.bvh().prims()[k] < scene.spheres.size())
-        return sphere_t(r, slot.a, slot.b.x, tmax);
-    return triangle_t(r, q, slot, tmax, extra);
-}
+    explicit Primitives(const Scene& s)
+        : order(s.bvh().prims().data()),
+          spheres(s.spheres.data()),
+          triangles(s.triangles.data()),
+          sphere_count(static_cast<std::uint32_t>(s.spheres.size())),
+          scene(s),
+          any_degenerate(s.any_degenerate()) {}
+
+    // t of primitive p, or NaN
+    float t(const Ray& r, const WoopRay& q, std::uint32_t p, float tmax,
+            TriangleExtra& extra) const {
+        if (p < sphere_count) {
+            const Sphere& sphere = spheres[p].sphere;
+            return sphere_t(r, sphere.c, sphere.r, tmax);
+        }
+        const std::uint32_t k = p - sphere_count;
+        return triangle_t(r, q, triangles[k], any_degenerate && scene.degenerate(k), tmax,
+                          extra);
+    }
+};
 
 // The nearest primitive and its Hit as its module returns it: t, position, normal, uv
 // (material and shading normal are the scene's to fill)
@@ -209,7 +202,8 @@ PrimRef closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, H
     const WoopRay q(r);
     Ray ray = r;
     ray.tmax = best_t;
-    std::uint32_t best_slot = 0;
+    const Primitives prims(scene);
+    std::uint32_t best_prim = 0;
     bool in_bvh = false;
     TriangleExtra extra, best_extra;
     scene.bvh().traverse(
@@ -217,13 +211,12 @@ PrimRef closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, H
         [&](std::uint32_t first, std::uint32_t count, float& tmax) {
             counters.intersection_tests += count;
             for (std::uint32_t k = first; k < first + count; ++k) {
-                const float t = slot_t(scene, r, q, k, tmax, extra);
+                const float t = prims.t(r, q, prims.order[k], tmax, extra);
                 if (!std::isnan(t)) {
                     tmax = best_t = t;
-                    best_slot = k;
+                    best_prim = prims.order[k];
                     best_extra = extra;
                     in_bvh = true;
-                    prefetch_primitive(scene, k);
                 }
             }
             return false;
@@ -238,14 +231,14 @@ PrimRef closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, H
         hit.n = scene.planes[best.index].plane.n;
         return best;
     }
-    const std::uint32_t p = scene.bvh().prims()[best_slot];
+    const std::uint32_t p = best_prim;
     const std::uint32_t sphere_count = static_cast<std::uint32_t>(scene.spheres.size());
     if (p < sphere_count) {
         const Sphere& sphere = scene.spheres[p].sphere;
         hit.n = (hit.position - sphere.c) / sphere.r;
         return {PrimRef::Kind::sphere, p};
     }
-    hit.n = triangle_normal(scene.slots()[best_slot]);
+    hit.n = triangle_normal(scene.triangles[p - sphere_count]);
     hit.uv = best_extra.uv;
     return {PrimRef::Kind::triangle, p - sphere_count};
 }
@@ -256,6 +249,7 @@ bool any_hit(const Scene& scene, const Ray& r, TraceCounters& counters) {
         if (!std::isnan(plane_t(r, p.plane, r.tmax))) return true;
     }
     const WoopRay q(r);
+    const Primitives prims(scene);
     bool hit = false;
     scene.bvh().traverse_any(
         r,
@@ -263,7 +257,7 @@ bool any_hit(const Scene& scene, const Ray& r, TraceCounters& counters) {
             for (std::uint32_t k = first; k < first + count && !hit; ++k) {
                 ++counters.intersection_tests;
                 TriangleExtra extra;
-                const float t = slot_t(scene, r, q, k, r.tmax, extra);
+                const float t = prims.t(r, q, prims.order[k], r.tmax, extra);
                 hit = !std::isnan(t);
             }
             return hit;

@@ -85,9 +85,9 @@ void add_materials(Scene& scene, const std::vector<tinyobj::material_t>& materia
 
 // One triangle of the mesh, or false when it has no area (it could never be hit)
 bool make_triangle(const tinyobj::attrib_t& attrib, const tinyobj::index_t* idx,
-                   const std::string& source, SceneTriangle& t) {
+                   const std::string& source, SceneTriangle& t, VertexNormals& normals) {
     Vec3* v[3] = {&t.v0, &t.v1, &t.v2};
-    Vec3* vn[3] = {&t.n0, &t.n1, &t.n2};
+    Vec3* vn[3] = {&normals.n0, &normals.n1, &normals.n2};
     bool has_normals = true;
     for (size_t k = 0; k < 3; ++k) {
         *v[k] = vertex(attrib.vertices, idx[k].vertex_index, source, "vertex");
@@ -110,7 +110,7 @@ bool make_triangle(const tinyobj::attrib_t& attrib, const tinyobj::index_t* idx,
             *nk /= len;
         }
     }
-    if (!has_normals) t.n0 = t.n1 = t.n2 = Vec3(0.0f);
+    if (!has_normals) normals = VertexNormals{};
     return true;
 }
 
@@ -119,6 +119,9 @@ void add_triangles(Scene& scene, const tinyobj::attrib_t& attrib,
                    const LoadProgress& progress) {
     const int default_material = static_cast<int>(scene.materials.size()) - 1;
     size_t faces = 0, degenerate = 0, total = 0;
+    // Vertex normals of every triangle, kept only when some triangle has them
+    std::vector<VertexNormals> normals;
+    bool any_normals = false;
     for (const tinyobj::shape_t& shape : shapes)
         total += shape.mesh.num_face_vertices.size();
     for (const tinyobj::shape_t& shape : shapes) {
@@ -132,8 +135,9 @@ void add_triangles(Scene& scene, const tinyobj::attrib_t& attrib,
                     progress.report("triangles", static_cast<float>(faces) / total);
             }
             SceneTriangle t;
+            VertexNormals tn;
             if (n != 3 || offset + 3 > mesh.indices.size() ||
-                !make_triangle(attrib, &mesh.indices[offset], source, t)) {
+                !make_triangle(attrib, &mesh.indices[offset], source, t, tn)) {
                 ++degenerate;
                 offset += n;
                 continue;
@@ -141,8 +145,15 @@ void add_triangles(Scene& scene, const tinyobj::attrib_t& attrib,
             const int m = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
             t.material = m >= 0 && m < default_material ? m : default_material;
             scene.triangles.push_back(t);
+            normals.push_back(tn);
+            any_normals |= tn.n0 != Vec3(0.0f);
             offset += n;
         }
+    }
+    if (any_normals) {
+        // Triangles the scene held before (none for a loaded file) are flat
+        scene.normals.resize(scene.triangles.size() - normals.size());
+        scene.normals.insert(scene.normals.end(), normals.begin(), normals.end());
     }
     if (scene.triangles.empty()) {
         throw Error(source + ": no valid triangle" +

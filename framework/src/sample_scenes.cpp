@@ -31,12 +31,14 @@ void add_mesh(Scene& scene, const Mesh& m, int material, bool smooth) {
         t.v0 = m.p[m.idx[k]];
         t.v1 = m.p[m.idx[k + 1]];
         t.v2 = m.p[m.idx[k + 2]];
-        if (smooth) {
-            t.n0 = n[m.idx[k]];
-            t.n1 = n[m.idx[k + 1]];
-            t.n2 = n[m.idx[k + 2]];
-        }
         t.material = material;
+        if (smooth) {
+            // Flat triangles added before get entries of zeros
+            scene.normals.resize(scene.triangles.size());
+            scene.normals.push_back({n[m.idx[k]], n[m.idx[k + 1]], n[m.idx[k + 2]]});
+        } else if (!scene.normals.empty()) {
+            scene.normals.emplace_back();
+        }
         scene.triangles.push_back(t);
     }
 }

@@ -65,7 +65,7 @@ void refine_hit(const Scene& s, std::int64_t source, Hit& hit, const Ray& r, Vec
     hit.position = accept_refined(x, on, r, hit.t);
 }
 
-Vec3 interpolated_normal(const SceneTriangle& tri, const Hit& hit) {
+Vec3 interpolated_normal(const VertexNormals& tri, const Hit& hit) {
     if (tri.n0 == Vec3(0.0f)) return hit.n;
     const Vec3 n =
         (1.0f - hit.uv.x - hit.uv.y) * tri.n0 + hit.uv.x * tri.n1 + hit.uv.y * tri.n2;
@@ -136,15 +136,30 @@ void Scene::commit() {
         check_material(spheres[k].material, what);
         boxes.push_back(sphere_box(s));
     }
+    if (!normals.empty() && normals.size() != triangles.size())
+        throw Error("vertex normals: " + std::to_string(normals.size()) +
+                    " entries for " + std::to_string(triangles.size()) +
+                    " triangles (none, or one per triangle)");
+    for (size_t k = 0; k < normals.size(); ++k) {
+        const VertexNormals& n = normals[k];
+        if (!is_finite(n.n0) || !is_finite(n.n1) || !is_finite(n.n2))
+            throw Error("triangle " + std::to_string(k) +
+                        ": vertex normal is not finite");
+    }
+    degenerate_.clear();
     for (size_t k = 0; k < triangles.size(); ++k) {
         const SceneTriangle& t = triangles[k];
         const std::string what = "triangle " + std::to_string(k);
         if (!is_finite(t.v0) || !is_finite(t.v1) || !is_finite(t.v2))
             throw Error(what + ": vertex is not finite");
-        if (!is_finite(t.n0) || !is_finite(t.n1) || !is_finite(t.n2))
-            throw Error(what + ": vertex normal is not finite");
         check_material(t.material, what);
         boxes.push_back(triangle_box(t));
+        const DVec3 a(t.v0);
+        const DVec3 N = glm::cross(DVec3(t.v1) - a, DVec3(t.v2) - a);
+        if (!(glm::dot(N, N) > 0.0)) {
+            degenerate_.resize(triangles.size());
+            degenerate_[k] = true;
+        }
     }
     for (size_t k = 0; k < lights.size(); ++k) {
         if (!is_finite(lights[k].p) || !is_finite(lights[k].I))
@@ -154,29 +169,10 @@ void Scene::commit() {
     if (!std::isfinite(ambient) || ambient < 0.0f)
         throw Error("ambient term must be finite and non-negative");
     bvh_.build(boxes);
-    fill_slots();
 }
 
 Aabb Scene::bounds() const {
     return bvh_.empty() ? Aabb{} : bvh_.bounds();
-}
-
-void Scene::fill_slots() {
-    const std::vector<std::uint32_t>& prims = bvh_.prims();
-    slots_.resize(prims.size());
-    const size_t sphere_count = spheres.size();
-    for (size_t k = 0; k < prims.size(); ++k) {
-        if (prims[k] < sphere_count) {
-            const Sphere& s = spheres[prims[k]].sphere;
-            slots_[k] = Slot{s.c, Vec3(s.r, 0.0f, 0.0f), Vec3(0.0f)};
-        } else {
-            const SceneTriangle& t = triangles[prims[k] - sphere_count];
-            const DVec3 a(t.v0);
-            const DVec3 N = glm::cross(DVec3(t.v1) - a, DVec3(t.v2) - a);
-            slots_[k] = glm::dot(N, N) > 0.0 ? Slot{t.v0, t.v1, t.v2}
-                                             : Slot{Vec3(NAN), Vec3(NAN), Vec3(NAN)};
-        }
-    }
 }
 
 namespace {
@@ -212,7 +208,7 @@ void Scene::complete(Hit& hit, const Ray& r, const PrimRef& prim) const {
         default: {
             const SceneTriangle& t = triangles[prim.index];
             material = t.material;
-            ns = interpolated_normal(t, hit);
+            if (!normals.empty()) ns = interpolated_normal(normals[prim.index], hit);
             source = sphere_count + prim.index;
         }
     }

@@ -103,10 +103,10 @@ TEST_SUITE("engine") {
         }
     }
 
-    // The engine skips the module's normal test: the scene gives degenerate triangles
-    // NaN slots instead (Scene::Slot). Rays exactly through points of collinear and
-    // repeated-vertex triangles must miss them on both paths (the conservative t > 0
-    // bound refuses most of them anyway) and, past the NaN slots, hit the wall behind
+    // The engine skips the module's normal test: the scene flags degenerate triangles
+    // at commit() instead (Scene::degenerate). Rays exactly through points of collinear
+    // and repeated-vertex triangles must miss them on both paths (the conservative t > 0
+    // bound refuses most of them anyway) and, past them, hit the wall behind
     TEST_CASE("degenerate triangles are missed on both paths") {
         Scene scene;
         scene.materials.push_back(Material{});
@@ -141,10 +141,10 @@ TEST_SUITE("engine") {
     }
 
     // The test above still passes when the engine refuses nothing for a zero normal (no
-    // NaN slots, no normal test). A ray from far away exactly through a vertex of a
+    // flag, no normal test). A ray from far away exactly through a vertex of a
     // collinear triangle can pass the watertight test and its conservative t > 0 bound
     // (e0 = e1 = 0, e2 a rounding residue, uv = (0, 1), t = 1): only the module's normal
-    // test, and the scene's NaN slots on the engine's side, refuse it. Without them the
+    // test, and the scene's flag on the engine's side, refuse it. Without them the
     // engine hit these with a NaN normal while the module path missed
     TEST_CASE("degenerate triangles hit through a vertex are missed on both paths") {
         const ModuleTable fast = engine_table(), slow = module_path_table();

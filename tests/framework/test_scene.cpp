@@ -89,6 +89,42 @@ TEST_SUITE("scene") {
         s.triangles[0].v0 = Vec3(0.0f);
         s.triangles[0].material = 3;
         CHECK_THROWS_WITH_AS(s.commit(), doctest::Contains("material index 3"), Error);
+        // Vertex normals: none, or one entry per triangle, finite
+        s.triangles[0].material = 0;
+        s.triangles.push_back(s.triangles[0]);
+        s.normals.resize(1);
+        CHECK_THROWS_WITH_AS(
+            s.commit(), doctest::Contains("vertex normals: 1 entries for 2 triangles"),
+            Error);
+        s.normals.resize(2);
+        s.normals[1].n2 = Vec3(0.0f, kInfinity, 0.0f);
+        CHECK_THROWS_WITH_AS(s.commit(),
+                             doctest::Contains("triangle 1: vertex normal is not finite"),
+                             Error);
+    }
+
+    TEST_CASE("vertex normals from an OBJ file shade smooth triangles, and only those") {
+        // Two triangles of the plane z = 0; the first has vertex normals tilted towards
+        // +x, the second none (flat)
+        const Scene scene = load_obj_text(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 1 0 1\n"
+            "f 1//1 2//1 3//1\nf 2 4 3\n",
+            "two.obj", [](const std::string&) { return std::string(); });
+        REQUIRE(scene.triangles.size() == 2);
+        REQUIRE(scene.normals.size() == 2);
+        CHECK(scene.normals[1].n0 == Vec3(0.0f));
+        const ModuleTable& m = reference_modules();
+        TraceCounters c;
+        const float h = std::sqrt(0.5f);
+        const auto smooth =
+            scene.closest_hit(m, Ray{Vec3(0.25f, 0.25f, 2.0f), Vec3(0, 0, -1)}, c);
+        REQUIRE(smooth.has_value());
+        CHECK(smooth->ns.x == doctest::Approx(h));
+        CHECK(smooth->ns.z == doctest::Approx(h));
+        const auto flat =
+            scene.closest_hit(m, Ray{Vec3(0.75f, 0.75f, 2.0f), Vec3(0, 0, -1)}, c);
+        REQUIRE(flat.has_value());
+        CHECK(flat->ns == Vec3(0.0f, 0.0f, 1.0f));
     }
 
     TEST_CASE("BVH closest hit equals brute force on random scenes") {

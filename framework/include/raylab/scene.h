@@ -36,11 +36,17 @@ struct SceneSphere {
     int material = 0;
 };
 
-/// A triangle; with vertex normals, the shading normal is interpolated from them.
+/// A triangle: its vertices and material (40 bytes). Vertex normals, for smooth shading,
+/// are in Scene::normals, so that a flat-shaded mesh does not pay for them.
 struct SceneTriangle {
     Vec3 v0, v1, v2;
-    Vec3 n0{0.0f}, n1{0.0f}, n2{0.0f};  ///< vertex normals; all zero: flat shading
     int material = 0;
+};
+
+/// A triangle's vertex normals: its shading normal is interpolated from them with the
+/// hit's uv. All three zero: flat shading (the geometric normal).
+struct VertexNormals {
+    Vec3 n0{0.0f}, n1{0.0f}, n2{0.0f};
 };
 
 /// Where the camera is and what it sees: the DTU camera's extrinsic parameters and FOV.
@@ -76,6 +82,9 @@ class Scene {
     std::vector<ScenePlane> planes;
     std::vector<SceneSphere> spheres;
     std::vector<SceneTriangle> triangles;
+    /// Vertex normals by triangle: empty (every triangle flat-shaded) or exactly one
+    /// entry per triangle (commit() checks).
+    std::vector<VertexNormals> normals;
     std::vector<PointLight> lights;
     View view;  ///< a good default view of this scene
     float ambient =
@@ -99,30 +108,27 @@ class Scene {
 
     const Bvh& bvh() const { return bvh_; }
 
-    /// A sphere or triangle in BVH slot order, for the engine: a triangle's vertices
-    /// (a, b, c), or a sphere's centre a and radius b.x. Slot k holds primitive
-    /// bvh().prims()[k]: spheres are 0 .. spheres.size() - 1, triangles follow. A
-    /// degenerate triangle (its normal (b - a) x (c - a), in double, has no length),
-    /// which the contract says is never hit, has NaN vertices, so the engine's test
-    /// misses it without computing the normal.
-    struct Slot {
-        Vec3 a, b, c;
-    };
-    const std::vector<Slot>& slots() const { return slots_; }
+    /// True for triangle k when its normal (v1 - v0) x (v2 - v0), in double, has no
+    /// length: the contract says such a triangle is never hit, and the reference's engine
+    /// refuses it by this flag, set by commit(), instead of computing the normal.
+    bool degenerate(size_t k) const { return !degenerate_.empty() && degenerate_[k]; }
+    /// True when any triangle is degenerate.
+    bool any_degenerate() const { return !degenerate_.empty(); }
 
-    /// Bytes of the acceleration data: BVH nodes, primitive order and slots.
+    /// Bytes of the acceleration data: BVH nodes, primitive order and the degenerate
+    /// flags (the engine reads spheres and triangles from the scene's own vectors,
+    /// through the order).
     size_t acceleration_bytes() const {
-        return bvh_.bytes() + slots_.size() * sizeof(Slot);
+        return bvh_.bytes() + (degenerate_.size() + 7) / 8;
     }
 
   private:
-    void fill_slots();
     void complete(Hit& hit, const Ray& r, const PrimRef& prim) const;
     std::optional<Hit> engine_closest_hit(const GeometryEngine& engine, const Ray& r,
                                           TraceCounters& counters) const;
 
-    Bvh bvh_;  // over spheres (first) and triangles (after them)
-    std::vector<Slot> slots_;
+    Bvh bvh_;                       // over spheres (first) and triangles (after them)
+    std::vector<bool> degenerate_;  // by triangle; empty when none is degenerate
 };
 
 /// The Occluder the shadow module receives: the scene's any-hit query, counted.
