@@ -2,6 +2,7 @@
 #include "raylab/scene.h"
 
 #include <cmath>
+#include <utility>
 
 #include "raylab/engine.h"
 #include "raylab/error.h"
@@ -140,25 +141,26 @@ void Scene::commit() {
         throw Error("vertex normals: " + std::to_string(normals.size()) +
                     " entries for " + std::to_string(triangles.size()) +
                     " triangles (none, or one per triangle)");
-    for (size_t k = 0; k < normals.size(); ++k) {
-        const VertexNormals& n = normals[k];
-        if (!is_finite(n.n0) || !is_finite(n.n1) || !is_finite(n.n2))
-            throw Error("triangle " + std::to_string(k) +
-                        ": vertex normal is not finite");
-    }
-    degenerate_.clear();
+    // The flags replace the scene's only once the whole scene is valid: a commit() that
+    // throws leaves the last good state (BVH and flags) in place
+    std::vector<bool> degenerate;
     for (size_t k = 0; k < triangles.size(); ++k) {
         const SceneTriangle& t = triangles[k];
         const std::string what = "triangle " + std::to_string(k);
         if (!is_finite(t.v0) || !is_finite(t.v1) || !is_finite(t.v2))
             throw Error(what + ": vertex is not finite");
+        if (!normals.empty()) {
+            const VertexNormals& n = normals[k];
+            if (!is_finite(n.n0) || !is_finite(n.n1) || !is_finite(n.n2))
+                throw Error(what + ": vertex normal is not finite");
+        }
         check_material(t.material, what);
         boxes.push_back(triangle_box(t));
         const DVec3 a(t.v0);
         const DVec3 N = glm::cross(DVec3(t.v1) - a, DVec3(t.v2) - a);
         if (!(glm::dot(N, N) > 0.0)) {
-            degenerate_.resize(triangles.size());
-            degenerate_[k] = true;
+            degenerate.resize(triangles.size());
+            degenerate[k] = true;
         }
     }
     for (size_t k = 0; k < lights.size(); ++k) {
@@ -169,6 +171,7 @@ void Scene::commit() {
     if (!std::isfinite(ambient) || ambient < 0.0f)
         throw Error("ambient term must be finite and non-negative");
     bvh_.build(boxes);
+    degenerate_ = std::move(degenerate);
 }
 
 Aabb Scene::bounds() const {
@@ -208,7 +211,9 @@ void Scene::complete(Hit& hit, const Ray& r, const PrimRef& prim) const {
         default: {
             const SceneTriangle& t = triangles[prim.index];
             material = t.material;
-            if (!normals.empty()) ns = interpolated_normal(normals[prim.index], hit);
+            // Bounded: normals may have been resized since commit()
+            if (prim.index < normals.size())
+                ns = interpolated_normal(normals[prim.index], hit);
             source = sphere_count + prim.index;
         }
     }

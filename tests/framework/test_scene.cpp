@@ -101,6 +101,10 @@ TEST_SUITE("scene") {
         CHECK_THROWS_WITH_AS(s.commit(),
                              doctest::Contains("triangle 1: vertex normal is not finite"),
                              Error);
+        // The first bad triangle is named, whether its vertex or its normal is bad
+        s.triangles[0].v1 = Vec3(NAN);
+        CHECK_THROWS_WITH_AS(
+            s.commit(), doctest::Contains("triangle 0: vertex is not finite"), Error);
     }
 
     TEST_CASE("vertex normals from an OBJ file shade smooth triangles, and only those") {
@@ -125,6 +129,15 @@ TEST_SUITE("scene") {
             scene.closest_hit(m, Ray{Vec3(0.75f, 0.75f, 2.0f), Vec3(0, 0, -1)}, c);
         REQUIRE(flat.has_value());
         CHECK(flat->ns == Vec3(0.0f, 0.0f, 1.0f));
+        // The flat face first: the normals start at the smooth one and are padded before
+        const Scene flat_first = load_obj_text(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 1 0 1\n"
+            "f 2 4 3\nf 1//1 2//1 3//1\nf 2 4 3\n",
+            "three.obj", [](const std::string&) { return std::string(); });
+        REQUIRE(flat_first.normals.size() == 3);
+        CHECK(flat_first.normals[0].n0 == Vec3(0.0f));
+        CHECK(flat_first.normals[1].n0.x == doctest::Approx(h));
+        CHECK(flat_first.normals[2].n2 == Vec3(0.0f));
     }
 
     TEST_CASE("BVH closest hit equals brute force on random scenes") {

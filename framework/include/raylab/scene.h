@@ -39,7 +39,7 @@ struct SceneSphere {
 /// A triangle: its vertices and material (40 bytes). Vertex normals, for smooth shading,
 /// are in Scene::normals, so that a flat-shaded mesh does not pay for them.
 struct SceneTriangle {
-    Vec3 v0, v1, v2;
+    Vec3 v0{0.0f}, v1{0.0f}, v2{0.0f};
     int material = 0;
 };
 
@@ -83,7 +83,7 @@ class Scene {
     std::vector<SceneSphere> spheres;
     std::vector<SceneTriangle> triangles;
     /// Vertex normals by triangle: empty (every triangle flat-shaded) or exactly one
-    /// entry per triangle (commit() checks).
+    /// entry per triangle (commit() checks; call it again after changing them).
     std::vector<VertexNormals> normals;
     std::vector<PointLight> lights;
     View view;  ///< a good default view of this scene
