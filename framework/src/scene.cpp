@@ -217,7 +217,7 @@ void Scene::complete(Hit& hit, const Ray& r, const PrimRef& prim) const {
             source = sphere_count + prim.index;
         }
     }
-    refine_hit(*this, source, hit, r, ns);
+    if (!prim.refined) refine_hit(*this, source, hit, r, ns);
     finish(hit, r, material, ns);
 }
 

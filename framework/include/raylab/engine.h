@@ -25,6 +25,8 @@ struct PrimRef {
     enum class Kind : std::uint8_t { none, plane, sphere, triangle };
     Kind kind = Kind::none;
     std::uint32_t index = 0;  ///< into Scene::planes, spheres or triangles
+    /// The engine set the hit's position to the refined point (raylab/refine.h) itself.
+    bool refined = false;
 };
 
 struct GeometryEngine {
@@ -34,7 +36,8 @@ struct GeometryEngine {
     decltype(&student::intersect_sphere) intersect_sphere;
     decltype(&student::intersect_triangle) intersect_triangle;
     /// The primitive whose hit the module path would return, counting the same tests;
-    /// when there is one, hit holds what its module returns (t, position, n, uv).
+    /// when there is one, hit holds what its module returns (t, position, n, uv), or
+    /// with PrimRef::refined the refined position instead of the module's.
     PrimRef (*closest_hit)(const Scene& scene, const Ray& r, TraceCounters& counters,
                            Hit& hit);
     /// What the module path's any-hit returns.
