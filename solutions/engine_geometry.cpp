@@ -246,7 +246,7 @@ PrimRef closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, H
     // The hit point from t in double, when its error bound (pbrt-v4's deltaT, above)
     // shows it within 2^-30 of its size of the exact intersection of the ray with the
     // triangle's plane, the point the scene's refinement computes (raylab/refine.h):
-    // rounded to float, at most 1/128 of an ulp more from it, and no plane normal, dot
+    // rounded to float, at most 1/64 of an ulp more from it, and no plane normal, dot
     // products and division on the way (a fifth of a Cornell box camera ray). A
     // coordinate all three vertices share is the plane's, exactly, as the refinement's
     // projection gives it. Otherwise (grazing rays, a far camera) the scene refines
@@ -255,10 +255,15 @@ PrimRef closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, H
     const auto max_abs = [](const DVec3& v) {
         return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
     };
+    // deltaT bounds the error of t only for |w| <= 1: its shear terms take z after the
+    // division by w_kz, and the rounding of the shear, about 3u |z| before it, is missed
+    // when |w_kz| > 1 (review: a ray with |w| = 1e6 was 2592 deltaT off). Ray::w is
+    // unit by contract; a longer one takes the scene's refinement
     const double W = max_abs(w);
     const bool refined =
+        W <= 1.0 &&
         best_extra.dt * W + 0x1p-52 * (max_abs(o) + std::abs(best_extra.td) * W) <=
-        0x1p-30 * max_abs(at);
+            0x1p-30 * max_abs(at);
     if (refined) {
         const SceneTriangle& tri = scene.triangles[p - sphere_count];
         for (int a = 0; a < 3; ++a) {

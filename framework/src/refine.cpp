@@ -87,11 +87,28 @@ Vec3 refine_on_sphere(const Vec3& x, const Ray& r, float t, const Sphere& sphere
 Vec3 refine_on_triangle(const Vec3& x, const Ray& r, const Vec3& v0, const Vec3& v1,
                         const Vec3& v2) {
     // Differences of floats are exact in double unless their exponents are more than 29
-    // apart; the cross product then carries a relative error of about 2^-52
-    const DVec3 a(v0), n = glm::cross(DVec3(v1) - a, DVec3(v2) - a);
+    // apart. A cross product of edges e, f errs by about 2^-53 |e| |f|, of the normal's
+    // length |e| |f| sin(angle): taken at the vertex opposite the longest edge, the two
+    // edges whose product is smallest (review: a sliver with one vertex 2^18 away, its
+    // normal from the two long edges off by 1.3e-10, put the point 2e4 delta off). The
+    // plane's offset is taken at the vertex nearest x, where a tilt of the normal moves
+    // the plane least
+    const DVec3 p[3] = {DVec3(v0), DVec3(v1), DVec3(v2)};
+    const double l01 = glm::dot(p[1] - p[0], p[1] - p[0]);
+    const double l12 = glm::dot(p[2] - p[1], p[2] - p[1]);
+    const double l20 = glm::dot(p[0] - p[2], p[0] - p[2]);
+    // Vertex i is opposite the longest edge; its edges to i + 1 and i + 2 keep the
+    // orientation of (v1 - v0) x (v2 - v0)
+    const int i = l12 >= l01 && l12 >= l20 ? 0 : (l20 >= l01 ? 1 : 2);
+    const DVec3& apex = p[i];
+    const DVec3 n = glm::cross(p[(i + 1) % 3] - apex, p[(i + 2) % 3] - apex);
     const double nn = glm::dot(n, n);
     if (!(nn > 0.0) || !std::isfinite(nn)) return x;
-    return ray_onto_plane(x, r, n, glm::dot(a, n));
+    const DVec3 X(x);
+    const auto d2 = [&](const DVec3& v) { return glm::dot(v - X, v - X); };
+    const DVec3& near = d2(p[0]) <= d2(p[1]) ? (d2(p[0]) <= d2(p[2]) ? p[0] : p[2])
+                                             : (d2(p[1]) <= d2(p[2]) ? p[1] : p[2]);
+    return ray_onto_plane(x, r, n, glm::dot(near, n));
 }
 
 Vec3 refine_sphere_normal(const Vec3& x, const Vec3& n, const Sphere& sphere) {

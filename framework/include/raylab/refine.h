@@ -13,7 +13,7 @@
 // float), the module's point is projected onto the surface instead. The reference's
 // engine computes a triangle's point itself, from its intersection test's t in double,
 // when that test's error bound puts it within 2^-30 of its size of the same exact point
-// (solutions/engine_geometry.cpp; PrimRef::refined): 1/128 of an ulp at most more.
+// (solutions/engine_geometry.cpp; PrimRef::refined): 1/64 of an ulp at most more.
 #pragma once
 
 #include "raylab/contract.h"

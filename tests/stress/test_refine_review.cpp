@@ -1,0 +1,136 @@
+// Found by an adversarial review of the engine's own refined point (PrimRef::refined)
+// and of the refinement it falls back to (framework/src/refine.cpp); each case failed
+// before its mend. Each expected point is the exact intersection of the float ray with
+// the plane of the float vertices (Python fractions), rounded to float. The bound is the
+// one raylab/refine.h promises: delta = 2^-23 max|x_i|.
+#include <doctest/doctest.h>
+
+#include "raylab/engine.h"
+#include "raylab/modules.h"
+#include "raylab/scene.h"
+#include "test_helpers.h"
+
+using namespace raylab;
+
+namespace {
+
+Vec3 hex3(const char* x, const char* y, const char* z) {
+    return Vec3(std::strtof(x, nullptr), std::strtof(y, nullptr),
+                std::strtof(z, nullptr));
+}
+
+float max_abs(const Vec3& v) {
+    return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+}
+
+// Distance (max norm) from the exact point, in units of delta(exact)
+float error_in_delta(const Vec3& got, const Vec3& exact) {
+    return max_abs(got - exact) / (0x1p-23f * max_abs(exact));
+}
+
+Scene one_triangle(const Vec3& v0, const Vec3& v1, const Vec3& v2) {
+    Scene s;
+    s.materials.push_back(Material{"grey", Vec3(0.5f), Vec3(0.0f)});
+    s.triangles.push_back(SceneTriangle{v0, v1, v2});
+    return s;
+}
+
+ModuleTable engine_path() {
+    return ModuleTable::make(ModuleSelection::all(Impl::reference));
+}
+ModuleTable module_path() {
+    ModuleTable t = engine_path();
+    t.engine = nullptr;
+    return t;
+}
+
+}  // namespace
+
+TEST_SUITE("review refine") {
+    TEST_CASE("engine shortcut: deltaT is no bound when |w| > 1 (grazing ray)") {
+        // pbrt's dx = gamma(5) (max_x + max_z) uses the z already scaled by 1 / w_z: with
+        // |w_z| = 1e6 the shear's rounding (about 3u |z| before scaling) is missed.
+        // |td - t| was 2592 dt and the engine's point 4.9 delta (8.9 half-ulps) off
+        // (module path: 0.08 delta). Ray::w is unit by contract, but nothing checks it:
+        // the engine now refines only rays with |w|_max <= 1
+        Scene s =
+            one_triangle(hex3("-0x1.9e5d1ep+12", "-0x1.aa131cp+11", "-0x1.9d4b44p+13"),
+                         hex3("-0x1.9e5d2ap+12", "-0x1.aa1316p+11", "-0x1.9d4b42p+13"),
+                         hex3("0x1.9e797p+12", "0x1.a9edccp+11", "0x1.9d4054p+13"));
+        s.commit();
+        const Ray r{hex3("-0x1.2dcbe4p+14", "-0x1.364392p+13", "-0x1.2cfb0cp+15"),
+                    hex3("0x1.aa8774p+18", "0x1.b6734ep+17", "0x1.a9596p+19"), 0.0f,
+                    kInfinity};
+        const Vec3 exact = hex3("0x1.1162e6p+3", "0x1.ad3de6p+1", "0x1.d2edb4p+3");
+        const ModuleTable fast = engine_path(), slow = module_path();
+        TraceCounters c;
+        Hit hit;
+        const PrimRef p = fast.engine->closest_hit(s, r, c, hit);
+        REQUIRE(p.kind == PrimRef::Kind::triangle);
+        if (p.refined) CHECK(error_in_delta(hit.position, exact) <= 1.0f);
+        const auto a = s.closest_hit(fast, r, c), b = s.closest_hit(slow, r, c);
+        REQUIRE(a.has_value());
+        REQUIRE(b.has_value());
+        CHECK(error_in_delta(a->position, exact) <= 1.0f);
+        CHECK(error_in_delta(b->position, exact) <= 1.0f);
+        CHECK(max_abs(a->position - b->position) <= 0x1p-23f * max_abs(b->position));
+    }
+
+    TEST_CASE("refinement: a huge triangle seen near the origin (both paths)") {
+        // |v| ~ 2^35, |x| ~ 0.83: k = v0 . n rounds at u |v0| |n|, so the refined point
+        // was 45 delta from the exact point and 35 delta below the plane, seen from the
+        // camera, and shadowed itself (the engine falls back: its dt is large). The
+        // offset is now taken at the vertex nearest x (v2, 2^30 away)
+        const Vec3 v0 = hex3("0x1.831c2p+34", "0x1.43d012p+35", "0x1.af6ce2p+34"),
+                   v1 = hex3("0x1.2773e6p+34", "-0x1.16b0d4p+35", "0x1.4960e6p+34"),
+                   v2 = hex3("-0x1.ad49aap+30", "-0x1.ee7ef4p+30", "-0x1.de741cp+30");
+        const Ray r{hex3("0x1.37c0cep+2", "0x1.29dba6p+2", "-0x1.b109dp-3"),
+                    hex3("-0x1.71c644p-1", "-0x1.61c214p-1", "0x1.04f7aep-5"), 0.0f,
+                    kInfinity};
+        const Vec3 exact = hex3("-0x1.a84464p-1", "-0x1.99069ap-1", "0x1.476cc4p-5");
+        Scene s = one_triangle(v0, v1, v2);
+        // A small triangle next to the hit, in the same plane (vertices rounded to float,
+        // within 1e-7 of it), where the shadow ray from 35 delta below crosses the plane
+        s.triangles.push_back(
+            SceneTriangle{hex3("-0x1.a8410cp-1", "-0x1.990faep-1", "0x1.47a85ep-5"),
+                          hex3("-0x1.a83f12p-1", "-0x1.98fffap-1", "0x1.47cb98p-5"),
+                          hex3("-0x1.a83056p-1", "-0x1.990c44p-1", "0x1.48d282p-5")});
+        s.commit();
+        const Vec3 light = hex3("0x1.7d8664p+2", "-0x1.531fa4p+1", "0x1.c93c8ap+2");
+        for (const ModuleTable& m : {engine_path(), module_path()}) {
+            INFO((m.engine ? "engine path" : "module path"));
+            TraceCounters c;
+            const auto h = s.closest_hit(m, r, c);
+            REQUIRE(h.has_value());
+            CHECK(error_in_delta(h->position, exact) <= 1.0f);
+            const SceneOccluder occluder(s, m, c);
+            const LightSample ls =
+                m.sample_point_light(PointLight{light, Vec3(1.0f)}, h->position);
+            REQUIRE(glm::dot(ls.wi, h->ns) > 0.0f);
+            CHECK_FALSE(m.in_shadow(occluder, h->position, h->ns, ls));  // acne
+        }
+    }
+
+    TEST_CASE("refinement: a sliver with one far vertex (both paths)") {
+        // v0 2^18 away, the hit near v1 v2: cross(v1 - v0, v2 - v0) of two long, nearly
+        // parallel edges cancels (n off by 1.3e-10 relative) and tilted the plane about
+        // v0: the refined point was 21,809 delta from the exact point, 362 delta off the
+        // plane (1.3e-3 in all, at |x| = 0.51; the module's float t is 3e-14 off). The
+        // normal now comes from the edges at the vertex opposite the longest edge
+        Scene s = one_triangle(hex3("-0x1.62a7bp+18", "0x1.f16bc6p+18", "0x1.9dc1f8p+17"),
+                               hex3("-0x1.80f032p-2", "0x1.6e2b12p-1", "0x1.a0fdp-3"),
+                               hex3("0x1.319fcap-1", "-0x1.3beba6p-2", "-0x1.271f68p-1"));
+        s.commit();
+        const Ray r{hex3("-0x1.bb5856p+3", "-0x1.38bb9ap+4", "0x1.f82e5ap+4"),
+                    hex3("0x1.61a436p-2", "0x1.016288p-1", "-0x1.95bf7ep-1"), 0.0f,
+                    kInfinity};
+        const Vec3 exact = hex3("-0x1.383812p-4", "0x1.054182p-1", "-0x1.b06c2ap-4");
+        for (const ModuleTable& m : {engine_path(), module_path()}) {
+            INFO((m.engine ? "engine path" : "module path"));
+            TraceCounters c;
+            const auto h = s.closest_hit(m, r, c);
+            REQUIRE(h.has_value());
+            CHECK(error_in_delta(h->position, exact) <= 1.0f);
+        }
+    }
+}
