@@ -52,6 +52,72 @@ Vec3 ray_onto_plane(const Vec3& x, const Ray& r, const DVec3& n, double k) {
     return to_float(onto_plane(DVec3(x), n, k));
 }
 
+// Double-double numbers (Dekker 1971; Shewchuk 1997): hi + lo, |lo| at most half an ulp
+// of hi, about 106 bits. Only for hits far nearer the origin than their triangle
+struct DD {
+    double hi, lo;
+};
+
+DD two_sum(double a, double b) {
+    const double s = a + b, bb = s - a;
+    return {s, (a - (s - bb)) + (b - bb)};
+}
+
+// a b exactly (Dekker's split into 26-bit halves: no FMA, -ffp-contract=off keeps it so)
+DD two_product(double a, double b) {
+    const auto split = [](double v, double& h, double& l) {
+        const double c = 134217729.0 * v;  // 2^27 + 1
+        h = c - (c - v);
+        l = v - h;
+    };
+    double ah, al, bh, bl;
+    split(a, ah, al);
+    split(b, bh, bl);
+    const double p = a * b;
+    return {p, ((ah * bh - p) + ah * bl + al * bh) + al * bl};
+}
+
+DD add(const DD& a, const DD& b) {
+    const DD s = two_sum(a.hi, b.hi);
+    return two_sum(s.hi, s.lo + (a.lo + b.lo));
+}
+
+// (a - b) . n, with a - b exact per component and n in double-double
+double dot_of_difference(const DVec3& a, const DVec3& b, const DD n[3]) {
+    DD acc{0.0, 0.0};
+    for (int c = 0; c < 3; ++c) {
+        const DD d = two_sum(a[c], -b[c]);
+        DD term = two_product(d.hi, n[c].hi);
+        term.lo += d.hi * n[c].lo + d.lo * n[c].hi;
+        acc = add(acc, term);
+    }
+    return acc.hi + acc.lo;
+}
+
+// ray_onto_plane for the plane through `near` with normal e1 x e2, when the hit x is far
+// nearer the origin than every vertex: in double, the plane's offset near x is known only
+// to about 2^-52 |near| (review: a triangle 2^35 away seen at |x| = 0.8 put the point 45
+// delta off, below its surface). The normal (the products of the float edges, exact in
+// double-double) and the two signed distances from the plane are computed in
+// double-double, the rest in double
+Vec3 ray_onto_far_plane(const Vec3& x, const Ray& r, const DVec3& e1, const DVec3& e2,
+                        const DVec3& near) {
+    DD n[3];
+    for (int c = 0; c < 3; ++c) {
+        const int a = (c + 1) % 3, b = (c + 2) % 3;
+        const DD m = two_product(e1[b], e2[a]);
+        n[c] = add(two_product(e1[a], e2[b]), DD{-m.hi, -m.lo});
+    }
+    const DVec3 nd(n[0].hi + n[0].lo, n[1].hi + n[1].lo, n[2].hi + n[2].lo);
+    const DVec3 o(r.o), w(r.w);
+    const double wn = glm::dot(w, nd), nn = glm::dot(nd, nd);
+    if (wn == 0.0 || !(nn > 0.0) || !std::isfinite(nn)) return x;
+    const DVec3 p = o + (dot_of_difference(near, o, n) / wn) * w;
+    const DVec3 q = p - (dot_of_difference(p, near, n) / nn) * nd;
+    if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) return x;
+    return to_float(q);
+}
+
 }  // namespace
 
 float hit_error_bound(const Vec3& x) {
@@ -108,6 +174,13 @@ Vec3 refine_on_triangle(const Vec3& x, const Ray& r, const Vec3& v0, const Vec3&
     const auto d2 = [&](const DVec3& v) { return glm::dot(v - X, v - X); };
     const DVec3& near = d2(p[0]) <= d2(p[1]) ? (d2(p[0]) <= d2(p[2]) ? p[0] : p[2])
                                              : (d2(p[1]) <= d2(p[2]) ? p[1] : p[2]);
+    // In double the plane near x is off by about 2^-52 |near|: beyond 2^10 |x| that nears
+    // 2^-40 of x, and the offset is computed in double-double
+    const float near_size = std::max(
+        {std::abs(float(near.x)), std::abs(float(near.y)), std::abs(float(near.z))});
+    if (near_size > 0x1p10f * max_abs(x))
+        return ray_onto_far_plane(x, r, p[(i + 1) % 3] - apex, p[(i + 2) % 3] - apex,
+                                  near);
     return ray_onto_plane(x, r, n, glm::dot(near, n));
 }
 

@@ -111,6 +111,36 @@ TEST_SUITE("review refine") {
         }
     }
 
+    TEST_CASE("refinement: every vertex 2^35 away, the hit at 0.006 (both paths)") {
+        // The triangle above with a third vertex 2^35 away, chosen (by a search over
+        // exact planes) so that the plane passes 0.0025 from the origin: the hit lies
+        // 0.006 from it. In double the plane there is known to about 2^-52 2^35 = 2^-17,
+        // thousands of delta; the offset is computed in double-double
+        const Vec3 v0 = hex3("0x1.831c2p+34", "0x1.43d012p+35", "0x1.af6ce2p+34"),
+                   v1 = hex3("0x1.2773e6p+34", "-0x1.16b0d4p+35", "0x1.4960e6p+34"),
+                   v2 = hex3("-0x1.8c11d6p+35", "-0x1.4e242ap+32", "-0x1.b978bep+35");
+        const Ray r{hex3("0x1.37c0cep+2", "0x1.29dba6p+2", "-0x1.b109dp-3"),
+                    hex3("-0x1.71c644p-1", "-0x1.61c214p-1", "0x1.04f7aep-5"), 0.0f,
+                    kInfinity};
+        const Vec3 exact = hex3("0x1.942eb4p-8", "-0x1.d48986p-13", "0x1.9c5508p-9");
+        Scene s = one_triangle(v0, v1, v2);
+        s.commit();
+        for (const ModuleTable& m : {engine_path(), module_path()}) {
+            INFO((m.engine ? "engine path" : "module path"));
+            TraceCounters c;
+            const auto h = s.closest_hit(m, r, c);
+            REQUIRE(h.has_value());
+            CHECK(error_in_delta(h->position, exact) <= 1.0f);
+            // A light above the surface: the surface must not shadow itself
+            const Vec3 light = h->position + 10.0f * h->ns + Vec3(3.0f, 0.0f, 0.0f);
+            const SceneOccluder occluder(s, m, c);
+            const LightSample ls =
+                m.sample_point_light(PointLight{light, Vec3(1.0f)}, h->position);
+            REQUIRE(glm::dot(ls.wi, h->ns) > 0.0f);
+            CHECK_FALSE(m.in_shadow(occluder, h->position, h->ns, ls));
+        }
+    }
+
     TEST_CASE("refinement: a sliver with one far vertex (both paths)") {
         // v0 2^18 away, the hit near v1 v2: cross(v1 - v0, v2 - v0) of two long, nearly
         // parallel edges cancels (n off by 1.3e-10 relative) and tilted the plane about
