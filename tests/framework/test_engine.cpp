@@ -15,16 +15,6 @@ using namespace raylab;
 
 namespace {
 
-ModuleTable engine_table() {
-    return ModuleTable::make(ModuleSelection::all(Impl::reference));
-}
-
-ModuleTable module_path_table() {
-    ModuleTable t = engine_table();
-    t.engine = nullptr;
-    return t;
-}
-
 // A floor plane under the Cornell box's triangles and a few spheres: all three kinds
 Scene mixed_scene() {
     Scene scene = cornell_box();

@@ -39,6 +39,17 @@ inline const ModuleTable& reference_modules() {
     return table;
 }
 
+/// Both paths side by side, whatever RAYLAB_TEST_PATH says: the reference's table with
+/// its engine, and the same table calling the modules once per primitive test.
+inline ModuleTable engine_table() {
+    return ModuleTable::make(ModuleSelection::all(Impl::reference));
+}
+inline ModuleTable module_path_table() {
+    ModuleTable t = engine_table();
+    t.engine = nullptr;
+    return t;
+}
+
 /// A small deterministic generator (PCG32, O'Neill 2014): tests print the seed they use.
 class Rng {
   public:
