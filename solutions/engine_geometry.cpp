@@ -166,15 +166,13 @@ struct Primitives {
     const SceneTriangle* triangles;
     std::uint32_t sphere_count;
     const Scene& scene;
-    bool any_degenerate;
 
     explicit Primitives(const Scene& s)
         : order(s.bvh().prims().data()),
           spheres(s.spheres.data()),
           triangles(s.triangles.data()),
           sphere_count(static_cast<std::uint32_t>(s.spheres.size())),
-          scene(s),
-          any_degenerate(s.any_degenerate()) {}
+          scene(s) {}
 
     // t of primitive p, or NaN
     float t(const Ray& r, const WoopRay& q, std::uint32_t p, float tmax,
@@ -184,8 +182,7 @@ struct Primitives {
             return sphere_t(r, sphere.c, sphere.r, tmax);
         }
         const std::uint32_t k = p - sphere_count;
-        return triangle_t(r, q, triangles[k], any_degenerate && scene.degenerate(k), tmax,
-                          extra);
+        return triangle_t(r, q, triangles[k], scene.degenerate(k), tmax, extra);
     }
 };
 
@@ -235,13 +232,14 @@ PrimRef closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, H
         return best;
     }
     const std::uint32_t p = best_prim;
-    const std::uint32_t sphere_count = static_cast<std::uint32_t>(scene.spheres.size());
-    if (p < sphere_count) {
-        const Sphere& sphere = scene.spheres[p].sphere;
+    if (p < prims.sphere_count) {
+        const Sphere& sphere = prims.spheres[p].sphere;
         hit.n = (hit.position - sphere.c) / sphere.r;
         return {PrimRef::Kind::sphere, p};
     }
-    hit.n = triangle_normal(scene.triangles[p - sphere_count]);
+    const std::uint32_t k = p - prims.sphere_count;
+    const SceneTriangle& tri = prims.triangles[k];
+    hit.n = triangle_normal(tri);
     hit.uv = best_extra.uv;
     // The hit point from t in double, when its error bound (pbrt-v4's deltaT, above)
     // shows it within 2^-30 of its size of the exact intersection of the ray with the
@@ -268,13 +266,12 @@ PrimRef closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, H
         2.0 * best_extra.dt * W + 0x1p-52 * (max_abs(o) + std::abs(best_extra.td) * W) <=
             0x1p-30 * max_abs(at);
     if (refined) {
-        const SceneTriangle& tri = scene.triangles[p - sphere_count];
         for (int a = 0; a < 3; ++a) {
             if (tri.v0[a] == tri.v1[a] && tri.v0[a] == tri.v2[a]) at[a] = tri.v0[a];
         }
         hit.position = Vec3(at);
     }
-    return {PrimRef::Kind::triangle, p - sphere_count, refined};
+    return {PrimRef::Kind::triangle, k, refined};
 }
 
 bool any_hit(const Scene& scene, const Ray& r, TraceCounters& counters) {

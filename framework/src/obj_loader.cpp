@@ -119,10 +119,6 @@ void add_triangles(Scene& scene, const tinyobj::attrib_t& attrib,
                    const LoadProgress& progress) {
     const int default_material = static_cast<int>(scene.materials.size()) - 1;
     size_t faces = 0, degenerate = 0, total = 0;
-    // Vertex normals of this file's triangles, from the first one that has them on
-    // (a flat mesh never allocates them)
-    const size_t first_triangle = scene.triangles.size();
-    std::vector<VertexNormals> normals;
     for (const tinyobj::shape_t& shape : shapes)
         total += shape.mesh.num_face_vertices.size();
     for (const tinyobj::shape_t& shape : shapes) {
@@ -145,20 +141,9 @@ void add_triangles(Scene& scene, const tinyobj::attrib_t& attrib,
             }
             const int m = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
             t.material = m >= 0 && m < default_material ? m : default_material;
-            if (!normals.empty() || tn.n0 != Vec3(0.0f)) {
-                normals.resize(scene.triangles.size() - first_triangle);
-                normals.push_back(tn);
-            }
-            scene.triangles.push_back(t);
+            scene.add_triangle(t, tn);
             offset += n;
         }
-    }
-    if (!normals.empty()) {
-        // Triangles the scene held before (none for a loaded file) and flat ones after
-        // the last smooth one get entries of zeros
-        scene.normals.resize(first_triangle);
-        scene.normals.insert(scene.normals.end(), normals.begin(), normals.end());
-        scene.normals.resize(scene.triangles.size());
     }
     if (scene.triangles.empty()) {
         throw Error(source + ": no valid triangle" +

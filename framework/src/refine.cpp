@@ -159,29 +159,29 @@ Vec3 refine_on_triangle(const Vec3& x, const Ray& r, const Vec3& v0, const Vec3&
     // normal from the two long edges off by 1.3e-10, put the point 2e4 delta off). The
     // plane's offset is taken at the vertex nearest x, where a tilt of the normal moves
     // the plane least
+    const Vec3* const v[3] = {&v0, &v1, &v2};
     const DVec3 p[3] = {DVec3(v0), DVec3(v1), DVec3(v2)};
-    const double l01 = glm::dot(p[1] - p[0], p[1] - p[0]);
-    const double l12 = glm::dot(p[2] - p[1], p[2] - p[1]);
-    const double l20 = glm::dot(p[0] - p[2], p[0] - p[2]);
+    // edge[j] runs from vertex j + 1 to j + 2, opposite vertex j
+    const DVec3 edge[3] = {p[2] - p[1], p[0] - p[2], p[1] - p[0]};
+    const double l[3] = {glm::dot(edge[0], edge[0]), glm::dot(edge[1], edge[1]),
+                         glm::dot(edge[2], edge[2])};
     // Vertex i is opposite the longest edge; its edges to i + 1 and i + 2 keep the
     // orientation of (v1 - v0) x (v2 - v0)
-    const int i = l12 >= l01 && l12 >= l20 ? 0 : (l20 >= l01 ? 1 : 2);
-    const DVec3& apex = p[i];
-    const DVec3 n = glm::cross(p[(i + 1) % 3] - apex, p[(i + 2) % 3] - apex);
+    const int i = l[0] >= l[2] && l[0] >= l[1] ? 0 : (l[1] >= l[2] ? 1 : 2);
+    const DVec3 e1 = edge[(i + 2) % 3], e2 = -edge[(i + 1) % 3];
+    const DVec3 n = glm::cross(e1, e2);
     const double nn = glm::dot(n, n);
     if (!(nn > 0.0) || !std::isfinite(nn)) return x;
     const DVec3 X(x);
-    const auto d2 = [&](const DVec3& v) { return glm::dot(v - X, v - X); };
-    const DVec3& near = d2(p[0]) <= d2(p[1]) ? (d2(p[0]) <= d2(p[2]) ? p[0] : p[2])
-                                             : (d2(p[1]) <= d2(p[2]) ? p[1] : p[2]);
+    double d[3];
+    for (int j = 0; j < 3; ++j)
+        d[j] = glm::dot(p[j] - X, p[j] - X);
+    const int k = d[0] <= d[1] ? (d[0] <= d[2] ? 0 : 2) : (d[1] <= d[2] ? 1 : 2);
     // In double the plane near x is off by about 2^-52 |near|: beyond 2^10 |x| that nears
     // 2^-40 of x, and the offset is computed in double-double
-    const float near_size = std::max(
-        {std::abs(float(near.x)), std::abs(float(near.y)), std::abs(float(near.z))});
-    if (near_size > 0x1p10f * max_abs(x))
-        return ray_onto_far_plane(x, r, p[(i + 1) % 3] - apex, p[(i + 2) % 3] - apex,
-                                  near);
-    return ray_onto_plane(x, r, n, glm::dot(near, n));
+    if (max_abs(*v[k]) > 0x1p10f * max_abs(x))
+        return ray_onto_far_plane(x, r, e1, e2, p[k]);
+    return ray_onto_plane(x, r, n, glm::dot(p[k], n));
 }
 
 Vec3 refine_sphere_normal(const Vec3& x, const Vec3& n, const Sphere& sphere) {

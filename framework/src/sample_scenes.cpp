@@ -32,14 +32,9 @@ void add_mesh(Scene& scene, const Mesh& m, int material, bool smooth) {
         t.v1 = m.p[m.idx[k + 1]];
         t.v2 = m.p[m.idx[k + 2]];
         t.material = material;
-        if (smooth) {
-            // Flat triangles added before get entries of zeros
-            scene.normals.resize(scene.triangles.size());
-            scene.normals.push_back({n[m.idx[k]], n[m.idx[k + 1]], n[m.idx[k + 2]]});
-        } else if (!scene.normals.empty()) {
-            scene.normals.emplace_back();
-        }
-        scene.triangles.push_back(t);
+        scene.add_triangle(
+            t, smooth ? VertexNormals{n[m.idx[k]], n[m.idx[k + 1]], n[m.idx[k + 2]]}
+                      : VertexNormals{});
     }
 }
 

@@ -85,6 +85,16 @@ class Scene {
     /// Vertex normals by triangle: empty (every triangle flat-shaded) or exactly one
     /// entry per triangle (commit() checks; call it again after changing them).
     std::vector<VertexNormals> normals;
+    /// Appends a triangle, keeping normals one per triangle: the first smooth triangle
+    /// (n not all zero) gives the flat ones before it entries of zeros, and once normals
+    /// holds entries every triangle gets one. A flat mesh never allocates normals.
+    void add_triangle(const SceneTriangle& t, const VertexNormals& n = {}) {
+        if (!normals.empty() || n.n0 != Vec3(0.0f)) {
+            normals.resize(triangles.size());
+            normals.push_back(n);
+        }
+        triangles.push_back(t);
+    }
     std::vector<PointLight> lights;
     View view;  ///< a good default view of this scene
     float ambient =
@@ -112,8 +122,6 @@ class Scene {
     /// length: the contract says such a triangle is never hit, and the reference's engine
     /// refuses it by this flag, set by commit(), instead of computing the normal.
     bool degenerate(size_t k) const { return !degenerate_.empty() && degenerate_[k]; }
-    /// True when any triangle is degenerate.
-    bool any_degenerate() const { return !degenerate_.empty(); }
 
     /// Bytes of the acceleration data: BVH nodes, primitive order and the degenerate
     /// flags (the engine reads spheres and triangles from the scene's own vectors,
