@@ -203,8 +203,9 @@ void parts_row(const std::string& name, const Scene& scene, const ModuleTable& m
             float found = 0.0f;
             for (const Ray& r : q.rays) {
                 Hit hit;
-                found += q.closest ? engine->closest_hit(scene, r, counters, hit).index
-                                   : engine->any_hit(scene, r, counters);
+                PrimRef prim;
+                if (q.closest) engine->closest_hit(scene, r, counters, hit, prim);
+                found += q.closest ? prim.index : engine->any_hit(scene, r, counters);
             }
             g_sink = found;
         },

@@ -102,14 +102,6 @@ struct TriangleExtra {
     double td, dt;  // t in double and its error bound (pbrt-v4's deltaT)
 };
 
-// intersect_triangle's normal (the same expressions)
-inline Vec3 triangle_normal(const SceneTriangle& tri) {
-    const DVec3 N =
-        glm::cross(DVec3(tri.v1) - DVec3(tri.v0), DVec3(tri.v2) - DVec3(tri.v0));
-    const double len = glm::length(N);
-    return Vec3(N * (1.0 / len));
-}
-
 // intersect_triangle's t, or NaN: the same operations (and the same decisions); on a
 // hit, its uv in extra. degenerate: the scene's flag for this triangle
 inline float triangle_t(const Ray& r, const WoopRay& q, const SceneTriangle& tri,
@@ -149,8 +141,8 @@ inline float triangle_t(const Ray& r, const WoopRay& q, const SceneTriangle& tri
         3 * (gamma(3) * max_e * max_z + de * max_z + dz * max_e) * std::abs(inv_det);
     if (!(td > dt)) return NAN;
     // The module also refuses a triangle whose normal has no length: the scene marks
-    // those at commit() (Scene::degenerate). The nearest hit's normal is computed once,
-    // by triangle_normal
+    // those at commit() (Scene::degenerate), and keeps the others' normals
+    // (Scene::face_normal), the nearest hit's normal
     if (degenerate) return NAN;
     extra.uv = Vec2(static_cast<float>(e1 * inv_det), static_cast<float>(e2 * inv_det));
     extra.td = td;
@@ -188,8 +180,9 @@ struct Primitives {
 
 // The nearest primitive and its Hit as its module returns it: t, position, normal, uv
 // (material and shading normal are the scene's to fill)
-PrimRef closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, Hit& hit) {
-    PrimRef best;
+void closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, Hit& hit,
+                 PrimRef& best) {
+    best = PrimRef{};
     float best_t = r.tmax;
     for (size_t k = 0; k < scene.planes.size(); ++k) {
         ++counters.intersection_tests;
@@ -205,41 +198,44 @@ PrimRef closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, H
     const Primitives prims(scene);
     std::uint32_t best_prim = 0;
     bool in_bvh = false;
-    TriangleExtra extra, best_extra;
+    // A triangle's test writes its extra only when it accepts, so straight into
+    // best_extra: a copy from a local just written stalled the load on the two stores it
+    // spans (store-to-load forwarding fails), a seventh of a Cornell box camera ray
+    TriangleExtra best_extra;
     scene.bvh().traverse(
         ray,
         [&](std::uint32_t first, std::uint32_t count, float& tmax) {
             counters.intersection_tests += count;
             for (std::uint32_t k = first; k < first + count; ++k) {
-                const float t = prims.t(r, q, prims.order[k], tmax, extra);
+                const float t = prims.t(r, q, prims.order[k], tmax, best_extra);
                 if (!std::isnan(t)) {
                     tmax = best_t = t;
                     best_prim = prims.order[k];
-                    best_extra = extra;
                     in_bvh = true;
                 }
             }
             return false;
         },
         counters.bvh_nodes);
-    if (best.kind == PrimRef::Kind::none && !in_bvh) return best;
+    if (best.kind == PrimRef::Kind::none && !in_bvh) return;
     // The module's Hit, from the values of the accepted test (same expressions)
     hit = Hit{};
     hit.t = best_t;
     hit.position = r.o + best_t * r.w;
     if (!in_bvh) {
         hit.n = scene.planes[best.index].plane.n;
-        return best;
+        return;
     }
     const std::uint32_t p = best_prim;
     if (p < prims.sphere_count) {
         const Sphere& sphere = prims.spheres[p].sphere;
         hit.n = (hit.position - sphere.c) / sphere.r;
-        return {PrimRef::Kind::sphere, p};
+        best = {PrimRef::Kind::sphere, p};
+        return;
     }
     const std::uint32_t k = p - prims.sphere_count;
     const SceneTriangle& tri = prims.triangles[k];
-    hit.n = triangle_normal(tri);
+    hit.n = scene.face_normal(k);  // intersect_triangle's normal, computed by commit()
     hit.uv = best_extra.uv;
     // The hit point from t in double, when its error bound (pbrt-v4's deltaT, above)
     // shows it within 2^-30 of its size of the exact intersection of the ray with the
@@ -271,7 +267,7 @@ PrimRef closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, H
         }
         hit.position = Vec3(at);
     }
-    return {PrimRef::Kind::triangle, k, refined};
+    best = {PrimRef::Kind::triangle, k, refined};
 }
 
 bool any_hit(const Scene& scene, const Ray& r, TraceCounters& counters) {

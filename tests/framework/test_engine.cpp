@@ -239,13 +239,14 @@ TEST_SUITE("engine") {
         Hit hit;
         const Ray near{Vec3(0.1f, 0.2f, 3.0f), glm::normalize(Vec3(-0.1f, -0.1f, -1.0f)),
                        0.0f, kInfinity};
-        const PrimRef a = engine->closest_hit(scene, near, c, hit);
+        PrimRef a, b;
+        engine->closest_hit(scene, near, c, hit, a);
         REQUIRE(a.kind == PrimRef::Kind::triangle);
         CHECK(a.refined);
         CHECK(hit.position.z == 0.0f);
         const Vec3 o(3e3f, 4e3f, 1e4f);
         const Ray far{o, glm::normalize(Vec3(0.1f, 0.05f, 0.0f) - o), 0.0f, kInfinity};
-        const PrimRef b = engine->closest_hit(scene, far, c, hit);
+        engine->closest_hit(scene, far, c, hit, b);
         REQUIRE(b.kind == PrimRef::Kind::triangle);
         CHECK_FALSE(b.refined);
         // Either way the scene's hit lies on the wall

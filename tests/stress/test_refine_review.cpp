@@ -91,7 +91,8 @@ TEST_SUITE("review refine") {
         const ModuleTable fast = engine_table(), slow = module_path_table();
         TraceCounters c;
         Hit hit;
-        const PrimRef p = fast.engine->closest_hit(s, r, c, hit);
+        PrimRef p;
+        fast.engine->closest_hit(s, r, c, hit, p);
         REQUIRE(p.kind == PrimRef::Kind::triangle);
         if (p.refined) CHECK(error_in_delta(hit.position, exact) <= 1.0f);
         const auto a = s.closest_hit(fast, r, c), b = s.closest_hit(slow, r, c);

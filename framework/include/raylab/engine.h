@@ -35,11 +35,14 @@ struct GeometryEngine {
     decltype(&student::intersect_plane) intersect_plane;
     decltype(&student::intersect_sphere) intersect_sphere;
     decltype(&student::intersect_triangle) intersect_triangle;
-    /// The primitive whose hit the module path would return, counting the same tests;
-    /// when there is one, hit holds what its module returns (t, position, n, uv), or
-    /// with PrimRef::refined the refined position instead of the module's.
-    PrimRef (*closest_hit)(const Scene& scene, const Ray& r, TraceCounters& counters,
-                           Hit& hit);
+    /// prim: the primitive whose hit the module path would return, counting the same
+    /// tests (kind none when there is none); when there is one, hit holds what its
+    /// module returns (t, position, n, uv), or with PrimRef::refined the refined position
+    /// instead of the module's. (An out-parameter, not a return value: GCC assembles a
+    /// returned PrimRef from its fields' stores on the stack and loads it back whole,
+    /// which the store buffer cannot forward, a tenth of a Cornell box camera ray.)
+    void (*closest_hit)(const Scene& scene, const Ray& r, TraceCounters& counters,
+                        Hit& hit, PrimRef& prim);
     /// What the module path's any-hit returns.
     bool (*any_hit)(const Scene& scene, const Ray& r, TraceCounters& counters);
 };

@@ -123,11 +123,19 @@ class Scene {
     /// refuses it by this flag, set by commit(), instead of computing the normal.
     bool degenerate(size_t k) const { return !degenerate_.empty() && degenerate_[k]; }
 
-    /// Bytes of the acceleration data: BVH nodes, primitive order and the degenerate
-    /// flags (the engine reads spheres and triangles from the scene's own vectors,
-    /// through the order).
+    /// Unit normal of triangle k as the contract defines hit.n: (v1 - v0) x (v2 - v0) in
+    /// double, divided by its length, rounded to float; zero when degenerate(k). Set by
+    /// commit(), so that the reference's engine reads its nearest hit's normal instead of
+    /// computing it (a square root and a division, a twelfth of a Cornell box camera
+    /// ray).
+    const Vec3& face_normal(size_t k) const { return face_normals_[k]; }
+
+    /// Bytes of the acceleration data: BVH nodes, primitive order, the degenerate flags
+    /// and the face normals (the engine reads spheres and triangles from the scene's own
+    /// vectors, through the order).
     size_t acceleration_bytes() const {
-        return bvh_.bytes() + (degenerate_.size() + 7) / 8;
+        return bvh_.bytes() + (degenerate_.size() + 7) / 8 +
+               face_normals_.size() * sizeof(Vec3);
     }
 
   private:
@@ -135,8 +143,9 @@ class Scene {
     std::optional<Hit> engine_closest_hit(const GeometryEngine& engine, const Ray& r,
                                           TraceCounters& counters) const;
 
-    Bvh bvh_;                       // over spheres (first) and triangles (after them)
-    std::vector<bool> degenerate_;  // by triangle; empty when none is degenerate
+    Bvh bvh_;                         // over spheres (first) and triangles (after them)
+    std::vector<bool> degenerate_;    // by triangle; empty when none is degenerate
+    std::vector<Vec3> face_normals_;  // by triangle
 };
 
 /// The Occluder the shadow module receives: the scene's any-hit query, counted.
