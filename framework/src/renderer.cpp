@@ -100,8 +100,19 @@ class PixelShader {
                   Ray* ray_out = nullptr) {
         uv_ = uv;
         Ray ray;
-        std::optional<Hit> hit;
-        if (!camera_hit(uv, ray, hit)) return settings_.background;
+        bool traced = false;
+        // The hit is initialised from the query's result, not assigned: an assignment
+        // copied it 16 bytes at a time while the engine's narrower stores to it were
+        // still in the store buffer, which cannot forward them (raylab-bench section 3)
+        const CameraHits::Sample* kept = kept_sample(uv);
+        const std::optional<Hit> hit =
+            kept ? kept->hit : cast_camera_ray(uv, ray, traced);
+        if (kept) {
+            traced = kept->traced;  // (the ray itself is not kept: shading needs the hit)
+        } else if (keep_) {
+            tile_hits_->push_back({uv, traced, hit});
+        }
+        if (!traced) return settings_.background;
         if (ray_out) *ray_out = ray;
         if (hit_out) *hit_out = hit;
         if (!hit) return settings_.background;
@@ -120,37 +131,34 @@ class PixelShader {
     }
 
   private:
-    // The camera ray through uv and its closest hit: the kept one while the pixel loop
-    // asks for the same points in the same order, else cast (and kept when asked). False
-    // when the camera module's ray is not valid
-    bool camera_hit(const Vec2& uv, Ray& ray, std::optional<Hit>& hit) {
+    // The kept camera hit of uv while the pixel loop asks for the kept points in the
+    // same order; nullptr once out of step (the rest of the tile is cast)
+    const CameraHits::Sample* kept_sample(const Vec2& uv) {
         if (reuse_ && cursor_ < tile_hits_->size() && (*tile_hits_)[cursor_].uv == uv) {
-            const CameraHits::Sample& kept = (*tile_hits_)[cursor_++];
             ++counters_.camera_rays_reused;
-            hit = kept.hit;  // (the ray itself is not kept: shading needs only the hit)
-            return kept.traced;
+            return &(*tile_hits_)[cursor_++];
         }
-        reuse_ = false;  // out of step: the rest of the tile is cast
-        const bool traced = cast_camera_ray(uv, ray, hit);
-        if (keep_) tile_hits_->push_back({uv, traced, hit});
-        return traced;
+        reuse_ = false;
+        return nullptr;
     }
 
-    bool cast_camera_ray(const Vec2& uv, Ray& ray, std::optional<Hit>& hit) {
+    // The camera ray through uv and its closest hit; traced: false when the camera
+    // module's ray is not valid
+    std::optional<Hit> cast_camera_ray(const Vec2& uv, Ray& ray, bool& traced) {
         // The framework boundary normalises w (docs/style.md rule 9). The module's ray is
         // read by component: a copy of the whole waits for the module's stores to finish
         // (a failed store-to-load forwarding), 6 % of a Cornell frame on one thread
         // (raylab-bench section 3)
         const Ray r = modules_.camera_ray(camera_, uv);
         const float len = glm::length(r.w);
-        if (!(len > 0.0f) || !std::isfinite(len) || !is_finite(r.o)) return false;
+        traced = len > 0.0f && std::isfinite(len) && is_finite(r.o);
+        if (!traced) return std::nullopt;
         ray.o = r.o;
         ray.w = r.w / len;
         ray.tmin = r.tmin;
         ray.tmax = r.tmax;
         ++counters_.camera_rays;
-        hit = scene_.closest_hit(modules_, ray, counters_.trace);
-        return true;
+        return scene_.closest_hit(modules_, ray, counters_.trace);
     }
 
     // Lights that reach the hit point, then the Lambert module; shadow rays only where
