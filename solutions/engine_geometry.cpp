@@ -96,6 +96,13 @@ struct WoopRay {
     }
 };
 
+// intersect_triangle's normal (the same expressions), where the scene keeps none
+inline Vec3 triangle_normal(const SceneTriangle& tri) {
+    const DVec3 N =
+        glm::cross(DVec3(tri.v1) - DVec3(tri.v0), DVec3(tri.v2) - DVec3(tri.v0));
+    return Vec3(N * (1.0 / glm::length(N)));
+}
+
 // What intersect_triangle's Hit holds besides t, position and normal
 struct TriangleExtra {
     Vec2 uv;
@@ -141,8 +148,8 @@ inline float triangle_t(const Ray& r, const WoopRay& q, const SceneTriangle& tri
         3 * (gamma(3) * max_e * max_z + de * max_z + dz * max_e) * std::abs(inv_det);
     if (!(td > dt)) return NAN;
     // The module also refuses a triangle whose normal has no length: the scene marks
-    // those at commit() (Scene::degenerate), and keeps the others' normals
-    // (Scene::face_normal), the nearest hit's normal
+    // those at commit() (Scene::degenerate); the nearest hit's normal is computed once,
+    // or read from the scene (Scene::face_normal)
     if (degenerate) return NAN;
     extra.uv = Vec2(static_cast<float>(e1 * inv_det), static_cast<float>(e2 * inv_det));
     extra.td = td;
@@ -239,7 +246,8 @@ void closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, Hit&
     }
     const std::uint32_t k = p - prims.sphere_count;
     const SceneTriangle& tri = prims.triangles[k];
-    hit.n = scene.face_normal(k);  // intersect_triangle's normal, computed by commit()
+    // intersect_triangle's normal: commit()'s, where the scene keeps it
+    hit.n = scene.has_face_normals() ? scene.face_normal(k) : triangle_normal(tri);
     hit.uv = best_extra.uv;
     // The hit point from t in double, when its error bound (pbrt-v4's deltaT, above)
     // shows it within 2^-30 of its size of the exact intersection of the ray with the

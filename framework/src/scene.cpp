@@ -144,7 +144,8 @@ void Scene::commit() {
     // The flags replace the scene's only once the whole scene is valid: a commit() that
     // throws leaves the last good state (BVH and flags) in place
     std::vector<bool> degenerate;
-    std::vector<Vec3> face_normals(triangles.size());
+    std::vector<Vec3> face_normals(triangles.size() <= kFaceNormalsUpTo ? triangles.size()
+                                                                        : 0);
     for (size_t k = 0; k < triangles.size(); ++k) {
         const SceneTriangle& t = triangles[k];
         const std::string what = "triangle " + std::to_string(k);
@@ -161,7 +162,7 @@ void Scene::commit() {
         const DVec3 N = glm::cross(DVec3(t.v1) - a, DVec3(t.v2) - a);
         const double len = glm::length(N);
         if (len > 0.0) {
-            face_normals[k] = Vec3(N * (1.0 / len));
+            if (!face_normals.empty()) face_normals[k] = Vec3(N * (1.0 / len));
         } else {
             degenerate.resize(triangles.size());
             degenerate[k] = true;

@@ -123,11 +123,21 @@ class Scene {
     /// refuses it by this flag, set by commit(), instead of computing the normal.
     bool degenerate(size_t k) const { return !degenerate_.empty() && degenerate_[k]; }
 
+    /// Triangles up to which commit() keeps every triangle's normal (face_normal): the
+    /// array, 12 bytes a triangle, then stays in the cache.
+    static constexpr size_t kFaceNormalsUpTo = size_t{1} << 14;
+
+    /// True when commit() kept the triangles' normals: a scene of at most
+    /// kFaceNormalsUpTo triangles. The reference's engine reads its nearest hit's normal
+    /// there instead of computing it (a square root and a division, a tenth of a Cornell
+    /// box camera ray); in a larger scene an incoherent ray's read of it missed the
+    /// cache (random rays through a 400,000-triangle mesh lost a sixth of their speed),
+    /// and the engine computes it from the vertices its test has just read.
+    bool has_face_normals() const { return !face_normals_.empty(); }
+
     /// Unit normal of triangle k as the contract defines hit.n: (v1 - v0) x (v2 - v0) in
-    /// double, divided by its length, rounded to float; zero when degenerate(k). Set by
-    /// commit(), so that the reference's engine reads its nearest hit's normal instead of
-    /// computing it (a square root and a division, a tenth of a Cornell box camera
-    /// ray).
+    /// double, divided by its length, rounded to float; zero when degenerate(k). Only
+    /// when has_face_normals().
     const Vec3& face_normal(size_t k) const { return face_normals_[k]; }
 
     /// Bytes of the acceleration data: BVH nodes, primitive order, the degenerate flags
@@ -145,7 +155,7 @@ class Scene {
 
     Bvh bvh_;                         // over spheres (first) and triangles (after them)
     std::vector<bool> degenerate_;    // by triangle; empty when none is degenerate
-    std::vector<Vec3> face_normals_;  // by triangle
+    std::vector<Vec3> face_normals_;  // by triangle, or empty (has_face_normals)
 };
 
 /// The Occluder the shadow module receives: the scene's any-hit query, counted.
