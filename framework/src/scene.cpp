@@ -103,6 +103,10 @@ void validate(const View& view) {
 }
 
 void Scene::commit() {
+    // The kept normals go first: a commit() that throws leaves the last good BVH and
+    // flags, but the triangles may have changed since, and the engine then computes the
+    // normals from them as the module path does (review: it read the old ones)
+    face_normals_.clear();
     const int material_count = static_cast<int>(materials.size());
     const auto check_material = [&](int m, const std::string& what) {
         if (m < 0 || m >= material_count)

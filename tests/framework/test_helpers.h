@@ -1,9 +1,12 @@
 // Small helpers shared by the framework tests.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ostream>
+#include <optional>
 #include <string>
 
 #include <doctest/doctest.h>
@@ -48,6 +51,24 @@ inline ModuleTable module_path_table() {
     ModuleTable t = engine_table();
     t.engine = nullptr;
     return t;
+}
+
+/// The engine's hit (a) against the module path's (b): the same hit, bit for bit, but
+/// for the point. The engine computes a triangle's refined point from its t in double,
+/// the module path from the plane: the same point within 2^-30 of its size, which rounds
+/// to the same float but where that point lies within 2^-30 of a rounding boundary.
+inline void check_same_hit(const std::optional<Hit>& a, const std::optional<Hit>& b) {
+    REQUIRE(a.has_value() == b.has_value());
+    if (!a) return;
+    CHECK(a->t == b->t);
+    const float size = std::max(
+        {std::abs(b->position.x), std::abs(b->position.y), std::abs(b->position.z)});
+    const Vec3 d = glm::abs(a->position - b->position);
+    CHECK(std::max({d.x, d.y, d.z}) <= 0x1p-23f * size);
+    CHECK(a->n == b->n);
+    CHECK(a->ns == b->ns);
+    CHECK(a->uv == b->uv);
+    CHECK(a->material == b->material);
 }
 
 /// A small deterministic generator (PCG32, O'Neill 2014): tests print the seed they use.
