@@ -103,10 +103,11 @@ void validate(const View& view) {
 }
 
 void Scene::commit() {
-    // The kept normals go first: a commit() that throws leaves the last good BVH and
-    // flags, but the triangles may have changed since, and the engine then computes the
-    // normals from them as the module path does (review: it read the old ones)
-    face_normals_.clear();
+    // Until this commit() succeeds, the queries call the modules: one that throws leaves
+    // the last good BVH, but the triangles may have changed since, and the engine's
+    // degenerate flags and normals would be the old triangles' (review: after a vertex
+    // change and a commit() that threw, the engine returned the old normal)
+    committed_ = false;
     const int material_count = static_cast<int>(materials.size());
     const auto check_material = [&](int m, const std::string& what) {
         if (m < 0 || m >= material_count)
@@ -182,6 +183,7 @@ void Scene::commit() {
     bvh_.build(boxes);
     degenerate_ = std::move(degenerate);
     face_normals_ = std::move(face_normals);
+    committed_ = true;
 }
 
 Aabb Scene::bounds() const {
@@ -249,7 +251,7 @@ std::optional<Hit> Scene::engine_closest_hit(const GeometryEngine& engine, const
 
 std::optional<Hit> Scene::closest_hit(const ModuleTable& modules, const Ray& r,
                                       TraceCounters& counters) const {
-    if (const GeometryEngine* engine = engine_for(modules))
+    if (const GeometryEngine* engine = committed_ ? engine_for(modules) : nullptr)
         return engine_closest_hit(*engine, r, counters);
     // Closest hit: every accepted hit shrinks tmax, so farther ones are rejected
     Ray ray = r;
@@ -297,7 +299,7 @@ std::optional<Hit> Scene::closest_hit(const ModuleTable& modules, const Ray& r,
 
 bool Scene::any_hit(const ModuleTable& modules, const Ray& r,
                     TraceCounters& counters) const {
-    if (const GeometryEngine* engine = engine_for(modules))
+    if (const GeometryEngine* engine = committed_ ? engine_for(modules) : nullptr)
         return engine->any_hit(*this, r, counters);
     for (const ScenePlane& p : planes) {
         ++counters.intersection_tests;

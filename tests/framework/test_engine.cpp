@@ -239,6 +239,32 @@ TEST_SUITE("engine") {
         both();
     }
 
+    // And with a triangle made collinear before the throwing commit(): the old flags
+    // say it is not degenerate, and the engine's test alone passes a ray through its
+    // vertex v2, which the module's normal test refuses
+    TEST_CASE(
+        "a commit() that throws after a triangle turned degenerate keeps both paths "
+        "in agreement") {
+        const ModuleTable fast = engine_table(), slow = module_path_table();
+        Scene scene;
+        scene.materials.push_back(Material{});
+        SceneTriangle before = kCollinear;
+        before.v0.y += 0.25f;  // not collinear; the same box around v2
+        scene.triangles.push_back(before);
+        scene.commit();
+        REQUIRE_FALSE(scene.degenerate(0));
+        scene.triangles[0] = kCollinear;
+        scene.ambient = -1.0f;
+        CHECK_THROWS_AS(scene.commit(), Error);
+        scene.ambient = 0.0f;
+        TraceCounters cf, cs;
+        const auto a = scene.closest_hit(fast, kThroughVertex, cf);
+        check_same_hit(a, scene.closest_hit(slow, kThroughVertex, cs));
+        CHECK_FALSE(a.has_value());
+        CHECK(scene.any_hit(fast, kThroughVertex, cf) ==
+              scene.any_hit(slow, kThroughVertex, cs));
+    }
+
     TEST_CASE("the engine refines a triangle hit itself only when its bound allows") {
         // A camera ray of the Cornell box: t's error bound is far below 2^-30 of the
         // point, so the engine sets the point, with the wall's shared coordinate exact

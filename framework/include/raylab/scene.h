@@ -102,7 +102,8 @@ class Scene {
 
     /// Validates the contents (finite values, material indices, radii) and builds the
     /// BVH. Call after every geometry change; camera and light changes need no rebuild.
-    /// Throws raylab::Error naming the first bad element.
+    /// Throws raylab::Error naming the first bad element; the scene then keeps its last
+    /// good BVH, and its queries call the modules (no engine) until a commit() succeeds.
     void commit();
 
     /// Bounds of spheres and triangles (planes excluded); empty box when there are none.
@@ -156,6 +157,7 @@ class Scene {
     Bvh bvh_;                         // over spheres (first) and triangles (after them)
     std::vector<bool> degenerate_;    // by triangle; empty when none is degenerate
     std::vector<Vec3> face_normals_;  // by triangle, or empty (has_face_normals)
+    bool committed_ = false;          // the last commit() succeeded: the engine may run
 };
 
 /// The Occluder the shadow module receives: the scene's any-hit query, counted.
