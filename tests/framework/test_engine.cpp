@@ -76,19 +76,8 @@ TEST_SUITE("engine") {
                 const Vec3 o = centre + size * rng.in_box(-0.7f, 0.7f);
                 const Ray r{o, rng.direction(), k % 3 == 0 ? 0.01f : 0.0f,
                             k % 5 == 0 ? 0.5f * glm::length(size) : kInfinity};
-                INFO("ray " << k << ": " << r);
-                const auto a = scene.closest_hit(fast, r, cf);
-                check_same_hit(a, scene.closest_hit(slow, r, cs));
-                CHECK(scene.any_hit(fast, r, cf) == scene.any_hit(slow, r, cs));
-                hits += a.has_value();
-                if (!a) continue;
-                // A ray leaving the surface from the hit point, as shadow rays do: the
-                // tests' paths for origins on a primitive (issue 8, B5)
-                const Ray leave{a->position, rng.direction(), 0.0f, kInfinity};
-                INFO("leaving: " << leave);
-                check_same_hit(scene.closest_hit(fast, leave, cf),
-                               scene.closest_hit(slow, leave, cs));
-                CHECK(scene.any_hit(fast, leave, cf) == scene.any_hit(slow, leave, cs));
+                INFO("ray " << k);
+                hits += check_both_paths(scene, fast, slow, r, rng, cf, cs);
             }
             CHECK(hits > 500);  // the rays meet the scene: the comparison means something
             CHECK(cf.intersection_tests == cs.intersection_tests);

@@ -72,17 +72,9 @@ void compare_paths(const Scene& scene, const std::vector<Vec3>& targets,
         const Vec3 w = k % 4 == 3
                            ? rng.direction()
                            : glm::normalize(targets[size_t(k) % targets.size()] - o);
-        const Ray r{o, w, 0.0f, kInfinity};
-        INFO("ray " << k << ": " << r);
-        const auto a = scene.closest_hit(fast, r, cf);
-        check_same_hit(a, scene.closest_hit(slow, r, cs));
-        CHECK(scene.any_hit(fast, r, cf) == scene.any_hit(slow, r, cs));
-        hits += a.has_value();
-        if (!a) continue;
-        const Ray leave{a->position, rng.direction(), 0.0f, kInfinity};
-        INFO("leaving: " << leave);
-        check_same_hit(scene.closest_hit(fast, leave, cf),
-                       scene.closest_hit(slow, leave, cs));
+        INFO("ray " << k);
+        hits +=
+            check_both_paths(scene, fast, slow, Ray{o, w, 0.0f, kInfinity}, rng, cf, cs);
     }
     CHECK(hits > rays / 2);
     CHECK(cf.intersection_tests == cs.intersection_tests);

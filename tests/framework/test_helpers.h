@@ -107,6 +107,26 @@ class Rng {
     std::uint64_t state_;
 };
 
+/// Ray r on the engine (fast) and the module path (slow), closest and any hit; where it
+/// hits, also a ray leaving the surface from the hit point in a random direction, as
+/// shadow rays do (the tests' paths for origins on a primitive, issue 8 B5). True when r
+/// hits.
+inline bool check_both_paths(const Scene& scene, const ModuleTable& fast,
+                             const ModuleTable& slow, const Ray& r, Rng& rng,
+                             TraceCounters& cf, TraceCounters& cs) {
+    INFO("ray " << r);
+    const auto a = scene.closest_hit(fast, r, cf);
+    check_same_hit(a, scene.closest_hit(slow, r, cs));
+    CHECK(scene.any_hit(fast, r, cf) == scene.any_hit(slow, r, cs));
+    if (!a) return false;
+    const Ray leave{a->position, rng.direction(), 0.0f, kInfinity};
+    INFO("leaving: " << leave);
+    check_same_hit(scene.closest_hit(fast, leave, cf),
+                   scene.closest_hit(slow, leave, cs));
+    CHECK(scene.any_hit(fast, leave, cf) == scene.any_hit(slow, leave, cs));
+    return true;
+}
+
 /// The scene moved by `by`, lights and view with it: far from the origin, where float
 /// positions are coarse and the numerics matter
 inline Scene translated(Scene scene, const Vec3& by) {
