@@ -6,12 +6,15 @@
 #   scripts/stress-matrix.sh [--ci | --quick]
 #
 # Default matrix (6 configurations; only raylab-stress-tests and what it links are built):
-#   g++     -O0, -O2, -O3 -march=native
+#   g++     -O0, -O2 -DRAYLAB_NO_SIMD, -O3 -march=native
 #   clang++ -O0, -O2, -O3 -march=native
+# RAYLAB_NO_SIMD builds the scalar twins of the SSE2 code (raylab/simd.h), which must give
+# the same results.
 # --ci: what `scripts/dev.sh test` runs, both compilers with -march=native: g++ -O2
-#   -march=native and clang++ -O3 -march=native (build-ci/ already runs the suite with g++
-#   -O3 and build-asan/ with g++ -O0; each configuration here is a build of the library,
-#   about 4 minutes on 2 busy cores without ccache, seconds with it)
+#   -march=native with the scalar twins and clang++ -O3 -march=native (build-ci/ already
+#   runs the suite with g++ -O3 and build-asan/ with g++ -O0, both with SSE2; each
+#   configuration here is a build of the library, about 4 minutes on 2 busy cores without
+#   ccache, seconds with it)
 # --quick: g++ -O2 and clang++ -O3 -march=native.
 # Build folders: build-stress/<compiler>-<flags>. Uses ccache when it is installed;
 # RAYLAB_STRESS_JOBS sets the build parallelism (default 2). Prints each configuration's
@@ -21,7 +24,7 @@ cd "$(dirname "$0")/.."
 
 configs=(
     "g++|-O0"
-    "g++|-O2"
+    "g++|-O2 -DRAYLAB_NO_SIMD"
     "g++|-O3 -march=native"
     "clang++|-O0"
     "clang++|-O2"
@@ -29,7 +32,7 @@ configs=(
 )
 case "${1:-}" in
     "") ;;
-    --ci) configs=("g++|-O2 -march=native" "clang++|-O3 -march=native") ;;
+    --ci) configs=("g++|-O2 -march=native -DRAYLAB_NO_SIMD" "clang++|-O3 -march=native") ;;
     --quick) configs=("g++|-O2" "clang++|-O3 -march=native") ;;
     *)
         echo "usage: scripts/stress-matrix.sh [--ci | --quick]" >&2

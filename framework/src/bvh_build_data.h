@@ -4,9 +4,7 @@
 
 #include <cstdint>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
+#include "raylab/simd.h"
 
 #include "raylab/bvh.h"
 
@@ -24,7 +22,7 @@ constexpr std::uint32_t kForkMin = 32768;
 
 // Four floats (x, y, z and a lane the geometry ignores) in one SSE register where there
 // is SSE2. min and max keep b unless a is smaller (larger), as glm::min/max and minps do
-#if defined(__SSE2__)
+#if RAYLAB_SSE2
 struct F4 {
     __m128 v;
 };

@@ -21,9 +21,7 @@
 #include <utility>
 #include <vector>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
+#include "raylab/simd.h"
 
 #include "raylab/contract.h"
 
@@ -146,7 +144,7 @@ class Bvh {
     // The ray, broadcast for the SSE slab test; near[a] names the box row the ray
     // enters by along axis a (lo for a positive direction, hi for a negative one)
     struct Ray4 {
-#if defined(__SSE2__)
+#if RAYLAB_SSE2
         __m128 o[3], inv_w[3];
 #else
         float o[3], inv_w[3];
@@ -155,7 +153,7 @@ class Bvh {
     };
     // Asks for a child node's cache lines while the nearer ones are processed
     void prefetch(std::uint32_t child) const {
-#if defined(__SSE2__)
+#if RAYLAB_SSE2
         if (child & kLeaf) return;
         const char* p = reinterpret_cast<const char*>(&nodes_[child]);
         for (size_t line = 0; line < sizeof(Node); line += 64)
@@ -181,7 +179,7 @@ class Bvh {
 // definition (Intel SDM: the second operand is returned when either is NaN).
 inline int Bvh::hit_children(const Node& n, const Ray4& r, float tmin, float tmax,
                              float t_enter[kWidth]) {
-#if defined(__SSE2__)
+#if RAYLAB_SSE2
     // Four boxes per SSE register, the groups independent of each other
     int mask = 0;
     for (int g = 0; g < kWidth; g += 4) {
@@ -232,7 +230,7 @@ void Bvh::walk(const Ray& r, Visit& visit, std::uint64_t& nodes_visited) const {
     Ray4 ray;
     for (int a = 0; a < 3; ++a) {
         const float inv_w = 1.0f / r.w[a];
-#if defined(__SSE2__)
+#if RAYLAB_SSE2
         ray.o[a] = _mm_set1_ps(r.o[a]);
         ray.inv_w[a] = _mm_set1_ps(inv_w);
 #else
