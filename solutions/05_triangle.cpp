@@ -115,9 +115,13 @@ namespace {
 inline __m128d pair_pd(const float* p, unsigned i, unsigned j) {
     return _mm_cvtps_pd(_mm_unpacklo_ps(_mm_load_ss(p + i), _mm_load_ss(p + j)));
 }
-// [p[0], p[1]] in double
+// [p[0], p[1]] in double (the two floats copied as one 8-byte value: a float is only
+// 4-byte aligned, so _mm_load_sd on them would be a misaligned double load, undefined
+// behaviour that the sanitizer build reports)
 inline __m128d load2_pd(const float* p) {
-    return _mm_cvtps_pd(_mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(p))));
+    double two_floats;
+    std::memcpy(&two_floats, p, sizeof two_floats);
+    return _mm_cvtps_pd(_mm_castpd_ps(_mm_set_sd(two_floats)));
 }
 // The layouts the 16-byte loads and stores below rely on
 static_assert(sizeof(Vec3) == 12 && offsetof(Ray, w) == 12 && offsetof(Ray, tmin) == 24);
