@@ -1,6 +1,7 @@
 // View files (viewer/view_file.h).
 #include "view_file.h"
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
@@ -98,6 +99,12 @@ ViewFile parse_view_file(const std::string& text, const std::string& source) {
                 check_light_size(x[0], at + "light_size");
                 file.light_size = x[0];
             } else {
+                // Range first: the cast of a float beyond int is undefined (the fuzzer's
+                // "light_samples 2332331833")
+                if (!(std::abs(x[0]) <= float(kMaxLightSamples) + 1.0f))
+                    throw Error(at + "light_samples: " + number(x[0]) +
+                                " light samples is outside 1.." +
+                                std::to_string(kMaxLightSamples));
                 const int n = static_cast<int>(x[0]);
                 if (float(n) != x[0])
                     throw Error(at + "light_samples: " + number(x[0]) +

@@ -69,6 +69,11 @@ TEST_SUITE("viewer") {
         CHECK(*file.light_samples == 16);
         CHECK(view_error(kGoodView + "light_samples 0\n") ==
               "v.txt:5: light_samples: 0 light samples is outside 1..1024");
+        // Beyond int: the fuzzer's case, once an undefined float-to-int cast
+        CHECK(view_error(kGoodView + "light_samples 2332331833\n") ==
+              "v.txt:5: light_samples: 2.33233178e+09 light samples is outside 1..1024");
+        CHECK(view_error(kGoodView + "light_samples -1e30\n") ==
+              "v.txt:5: light_samples: -1.00000002e+30 light samples is outside 1..1024");
         CHECK(
             view_error(kGoodView + "light_size -1\n") ==
             "v.txt:5: light_size: light size -1 is outside [0, 1000] (0: point lights)");
