@@ -96,13 +96,6 @@ struct WoopRay {
     }
 };
 
-// intersect_triangle's normal (the same expressions), where the scene keeps none
-inline Vec3 triangle_normal(const SceneTriangle& tri) {
-    const DVec3 N =
-        glm::cross(DVec3(tri.v1) - DVec3(tri.v0), DVec3(tri.v2) - DVec3(tri.v0));
-    return Vec3(N * (1.0 / glm::length(N)));
-}
-
 // What intersect_triangle's Hit holds besides t, position and normal
 struct TriangleExtra {
     Vec2 uv;
@@ -181,6 +174,8 @@ struct Primitives {
             return sphere_t(r, sphere.c, sphere.r, tmax);
         }
         const std::uint32_t k = p - sphere_count;
+        // The flag is read for every test, not only for one that passes: its load then
+        // overlaps the test (read last, Cornell box random rays were 2 % slower)
         return triangle_t(r, q, triangles[k], scene.degenerate(k), tmax, extra);
     }
 };
@@ -247,7 +242,7 @@ void closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, Hit&
     const std::uint32_t k = p - prims.sphere_count;
     const SceneTriangle& tri = prims.triangles[k];
     // intersect_triangle's normal: commit()'s, where the scene keeps it
-    hit.n = scene.has_face_normals() ? scene.face_normal(k) : triangle_normal(tri);
+    hit.n = scene.has_face_normals() ? scene.face_normal(k) : unit_normal(tri);
     hit.uv = best_extra.uv;
     // The hit point from t in double, when its error bound (pbrt-v4's deltaT, above)
     // shows it within 2^-30 of its size of the exact intersection of the ray with the

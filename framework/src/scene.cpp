@@ -102,6 +102,12 @@ void validate(const View& view) {
     }
 }
 
+Vec3 unit_normal(const SceneTriangle& t) {
+    const DVec3 N = glm::cross(DVec3(t.v1) - DVec3(t.v0), DVec3(t.v2) - DVec3(t.v0));
+    const double len = glm::length(N);
+    return len > 0.0 ? Vec3(N * (1.0 / len)) : Vec3(0.0f);
+}
+
 void Scene::commit() {
     // Until this commit() succeeds, the queries call the modules: one that throws leaves
     // the last good BVH, but the triangles may have changed since, and the engine's
@@ -163,14 +169,14 @@ void Scene::commit() {
         }
         check_material(t.material, what);
         boxes.push_back(triangle_box(t));
-        const DVec3 a(t.v0);
-        const DVec3 N = glm::cross(DVec3(t.v1) - a, DVec3(t.v2) - a);
-        const double len = glm::length(N);
-        if (len > 0.0) {
-            if (!face_normals.empty()) face_normals[k] = Vec3(N * (1.0 / len));
-        } else {
+        // A unit normal in double has a component of at least 1/sqrt(3): zero only when
+        // degenerate
+        const Vec3 n = unit_normal(t);
+        if (n == Vec3(0.0f)) {
             degenerate.resize(triangles.size());
             degenerate[k] = true;
+        } else if (!face_normals.empty()) {
+            face_normals[k] = n;
         }
     }
     for (size_t k = 0; k < lights.size(); ++k) {
@@ -190,19 +196,16 @@ Aabb Scene::bounds() const {
     return bvh_.empty() ? Aabb{} : bvh_.bounds();
 }
 
-namespace {
-
-// The engine, when the table runs the reference's intersection tests it reproduces
-const GeometryEngine* engine_for(const ModuleTable& m) {
+// The engine, when the table runs the reference's intersection tests it reproduces and
+// the last commit() succeeded
+const GeometryEngine* Scene::engine_for(const ModuleTable& m) const {
     const GeometryEngine* e = m.engine;
-    if (e && m.intersect_plane == e->intersect_plane &&
+    if (committed_ && e && m.intersect_plane == e->intersect_plane &&
         m.intersect_sphere == e->intersect_sphere &&
         m.intersect_triangle == e->intersect_triangle)
         return e;
     return nullptr;
 }
-
-}  // namespace
 
 // Material and shading normal of the nearest hit, from the primitive it belongs to, and
 // its point refined on that primitive (refine_hit)
@@ -251,7 +254,7 @@ std::optional<Hit> Scene::engine_closest_hit(const GeometryEngine& engine, const
 
 std::optional<Hit> Scene::closest_hit(const ModuleTable& modules, const Ray& r,
                                       TraceCounters& counters) const {
-    if (const GeometryEngine* engine = committed_ ? engine_for(modules) : nullptr)
+    if (const GeometryEngine* engine = engine_for(modules))
         return engine_closest_hit(*engine, r, counters);
     // Closest hit: every accepted hit shrinks tmax, so farther ones are rejected
     Ray ray = r;
@@ -299,7 +302,7 @@ std::optional<Hit> Scene::closest_hit(const ModuleTable& modules, const Ray& r,
 
 bool Scene::any_hit(const ModuleTable& modules, const Ray& r,
                     TraceCounters& counters) const {
-    if (const GeometryEngine* engine = committed_ ? engine_for(modules) : nullptr)
+    if (const GeometryEngine* engine = engine_for(modules))
         return engine->any_hit(*this, r, counters);
     for (const ScenePlane& p : planes) {
         ++counters.intersection_tests;

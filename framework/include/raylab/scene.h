@@ -43,6 +43,11 @@ struct SceneTriangle {
     int material = 0;
 };
 
+/// Triangle t's unit normal as the contract defines hit.n: (v1 - v0) x (v2 - v0) in
+/// double, divided by its length, rounded to float; zero when the cross product has no
+/// length (a degenerate triangle, never hit). The reference module computes the same.
+Vec3 unit_normal(const SceneTriangle& t);
+
 /// A triangle's vertex normals: its shading normal is interpolated from them with the
 /// hit's uv. All three zero: flat shading (the geometric normal).
 struct VertexNormals {
@@ -150,6 +155,7 @@ class Scene {
     }
 
   private:
+    const GeometryEngine* engine_for(const ModuleTable& modules) const;
     void complete(Hit& hit, const Ray& r, const PrimRef& prim) const;
     std::optional<Hit> engine_closest_hit(const GeometryEngine& engine, const Ray& r,
                                           TraceCounters& counters) const;
