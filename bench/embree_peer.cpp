@@ -3,6 +3,7 @@
 // rtcSetSceneFlags(3)); Debian's libembree-dev 3.13.5.
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <map>
@@ -101,6 +102,41 @@ class EmbreeScene : public PeerScene {
         }
     }
 
+    void closest_hit16(const std::vector<Ray>& rays,
+                       std::vector<float>& t) const override {
+        t.resize(rays.size());
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        alignas(64) RTCRayHit16 rh;
+        alignas(64) int valid[16];
+        for (size_t first = 0; first < rays.size(); first += 16) {
+            const size_t n = std::min<size_t>(16, rays.size() - first);
+            for (size_t k = 0; k < 16; ++k) {
+                valid[k] = k < n ? -1 : 0;
+                const Ray& r = rays[first + (k < n ? k : 0)];
+                rh.ray.org_x[k] = r.o.x;
+                rh.ray.org_y[k] = r.o.y;
+                rh.ray.org_z[k] = r.o.z;
+                rh.ray.tnear[k] = r.tmin;
+                rh.ray.dir_x[k] = r.w.x;
+                rh.ray.dir_y[k] = r.w.y;
+                rh.ray.dir_z[k] = r.w.z;
+                rh.ray.time[k] = 0.0f;
+                rh.ray.tfar[k] = r.tmax;
+                rh.ray.mask[k] = 0xFFFFFFFFu;
+                rh.ray.id[k] = 0;
+                rh.ray.flags[k] = 0;
+                rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+                rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+            }
+            rtcIntersect16(valid, scene_, &context, &rh);
+            for (size_t k = 0; k < n; ++k)
+                t[first + k] = rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID
+                                   ? rh.ray.tfar[k]
+                                   : kInfinity;
+        }
+    }
     void any_hit(const std::vector<Ray>& rays, std::vector<char>& hit) const override {
         hit.resize(rays.size());
         RTCIntersectContext context;

@@ -18,6 +18,10 @@ class PeerScene {
     /// t of every ray's closest hit in [tmin, tmax], kInfinity on a miss.
     virtual void closest_hit(const std::vector<Ray>& rays,
                              std::vector<float>& t) const = 0;
+    /// The same as closest_hit, each 16 consecutive rays as one packet (rtcIntersect16,
+    /// coherent context): Embree's own fastest way for a block of camera rays.
+    virtual void closest_hit16(const std::vector<Ray>& rays,
+                               std::vector<float>& t) const = 0;
     /// Whether anything lies on every ray in [tmin, tmax].
     virtual void any_hit(const std::vector<Ray>& rays, std::vector<char>& hit) const = 0;
     double build_seconds = 0.0;  ///< rtcNewScene to rtcCommitScene, device excluded

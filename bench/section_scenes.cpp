@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <thread>
 
 #include "mesh.h"
@@ -94,6 +95,11 @@ struct Tables {
     Table speed2{{"scene", "rays", "query", "count", "raylab Mrays/s", "Embree Mrays/s",
                   "raylab/Embree"},
                  3};
+    Table packets{{"scene", "threads", "raylab single Mrays/s", "raylab packets Mrays/s",
+                   "Embree rtcIntersect1 Mrays/s", "Embree rtcIntersect16 Mrays/s",
+                   "packets/Embree 1", "packets/Embree 16", "nodes/ray single",
+                   "nodes/ray packets", "differ from single"},
+                  2};
     Table parts{
         {"scene", "rays", "query", "Embree ns/ray", "raylab ns/ray", "engine ns/ray",
          "BVH walk ns/ray", "walk %", "leaf tests and engine %", "completion %"},
@@ -174,6 +180,110 @@ void two_thread_row(const std::string& name, const Scene& scene,
     if (peer)
         record_target(name + ", " + q.name + " rays, 2 threads: raylab / Embree",
                       s[1] / s[0], embree_target(name), true);
+}
+
+// The camera rays reordered into blocks of 4 x 4 pixels, the order in which the
+// renderer traces a tile's camera rays (GeometryEngine::closest_hit_packet)
+std::vector<Ray> in_blocks(const std::vector<Ray>& rays, int W, int H) {
+    std::vector<Ray> out;
+    out.reserve(rays.size());
+    for (int by = 0; by < H; by += 4)
+        for (int bx = 0; bx < W; bx += 4)
+            for (int j = by; j < std::min(by + 4, H); ++j)
+                for (int i = bx; i < std::min(bx + 4, W); ++i)
+                    out.push_back(rays[size_t(j) * size_t(W) + size_t(i)]);
+    return out;
+}
+
+// One pass of raylab's packets over rays: Scene::closest_hits, 16 rays at a time
+void packet_pass(const Scene& scene, const ModuleTable& modules, const Ray* rays,
+                 size_t n, float* t, TraceCounters& counters) {
+    constexpr int P = GeometryEngine::kPacketSize;
+    std::optional<Hit> hits[P];
+    for (size_t first = 0; first < n; first += P) {
+        const int m = static_cast<int>(std::min<size_t>(P, n - first));
+        scene.closest_hits(modules, rays + first, m, counters, hits);
+        for (int k = 0; k < m; ++k)
+            t[first + size_t(k)] = hits[k] ? hits[k]->t : kInfinity;
+    }
+}
+
+// Camera rays in 4 x 4 blocks on 1 and 2 threads (half of the blocks each): raylab one
+// ray at a time and in packets, Embree one ray at a time and in packets of 16, all
+// interleaved; and whether the packets' t equals the single rays' t everywhere
+void packet_rows(const std::string& name, const Scene& scene, const ModuleTable& modules,
+                 const PeerScene* peer, const QuerySet& camera, const BenchOptions& opt,
+                 Table& table) {
+    const std::vector<Ray> rays = in_blocks(camera.rays, opt.width, opt.height);
+    const size_t n = rays.size();
+    std::vector<float> single(n), packed(n), e1(n), e16(n);
+    TraceCounters cs, cp;
+    const QuerySet blocks{camera.name, true, rays};
+    Traced traced;
+    raylab_pass(scene, modules, blocks, traced, cs);
+    packet_pass(scene, modules, rays.data(), n, packed.data(), cp);
+    size_t differ = 0;
+    for (size_t k = 0; k < n; ++k)
+        differ += std::memcmp(&traced.t[k], &packed[k], sizeof(float)) != 0;
+    for (const int threads : {1, 2}) {
+        // Each thread takes a contiguous half of the blocks (whole packets)
+        const size_t half = (n / 2 + 15) / 16 * 16;
+        const auto parts = [&](const auto& work) {
+            if (threads == 1) return work(size_t{0}, n, 0);
+            std::thread helper(work, half, n, 1);
+            work(size_t{0}, half, 0);
+            helper.join();
+        };
+        struct alignas(64) Counters {
+            TraceCounters c;
+        } counters[2];
+        std::vector<std::function<void()>> works{
+            [&] {
+                parts([&](size_t a, size_t b, int k) {
+                    for (size_t i = a; i < b; ++i) {
+                        const std::optional<Hit> hit =
+                            scene.closest_hit(modules, rays[i], counters[k].c);
+                        single[i] = hit ? hit->t : kInfinity;
+                    }
+                });
+            },
+            [&] {
+                parts([&](size_t a, size_t b, int k) {
+                    packet_pass(scene, modules, rays.data() + a, b - a, packed.data() + a,
+                                counters[k].c);
+                });
+            }};
+        const std::vector<Ray> halves[2] = {{rays.begin(), rays.begin() + long(half)},
+                                            {rays.begin() + long(half), rays.end()}};
+        std::vector<float> out[2];
+        if (peer) {
+            works.push_back([&] {
+                if (threads == 1) return peer->closest_hit(rays, e1);
+                parts(
+                    [&](size_t, size_t, int k) { peer->closest_hit(halves[k], out[k]); });
+            });
+            works.push_back([&] {
+                if (threads == 1) return peer->closest_hit16(rays, e16);
+                parts([&](size_t, size_t, int k) {
+                    peer->closest_hit16(halves[k], out[k]);
+                });
+            });
+        }
+        const std::vector<double> s = interleaved_median_seconds(opt.repeats, works);
+        const auto speed = [&](size_t k) {
+            return k < s.size() ? fmt("%.2f", mrays(n, s[k])) : std::string("-");
+        };
+        table.row({name, fmt("%d", threads), speed(0), speed(1), speed(2), speed(3),
+                   peer ? fmt("%.3f", s[2] / s[1]) : "-",
+                   peer ? fmt("%.3f", s[3] / s[1]) : "-",
+                   fmt("%.2f", double(cs.bvh_nodes) / double(n)),
+                   fmt("%.2f", double(cp.bvh_nodes) / double(n)), fmt("%zu", differ)});
+        if (peer)
+            record_target(name + ", camera rays in packets, " + fmt("%d", threads) +
+                              (threads == 1 ? " thread" : " threads") +
+                              ": raylab packets / Embree rtcIntersect1",
+                          s[2] / s[1], embree_target(name), true);
+    }
 }
 
 // Where raylab's time per ray goes, one thread, all passes interleaved with Embree's:
@@ -290,6 +400,7 @@ void bench_scene(const std::string& name, Scene& scene, const ModuleTable& modul
     for (const QuerySet& q : sets)
         two_thread_row(name, scene, modules, peer[0].get(), q, opt.repeats,
                        tables.speed2);
+    packet_rows(name, scene, modules, peer[0].get(), sets[0], opt, tables.packets);
 }
 
 }  // namespace
@@ -336,6 +447,20 @@ void run_scene_section(const BenchOptions& opt) {
     tables.parts.print();
     std::printf("### Speed (two threads, half of the rays each)\n\n");
     tables.speed2.print();
+    std::printf(
+        "### Camera rays in packets\n\n"
+        "The camera rays of section 2 in blocks of 4 x 4 pixels, the order in which the "
+        "renderer traces a tile (raylab/engine.h, closest_hit_packet). raylab single: "
+        "Scene::closest_hit per ray; raylab packets: Scene::closest_hits, 16 rays from "
+        "one origin sharing one frustum walk of the BVH and each triangle's "
+        "translation, the rest of each test four rays at a time (bit for bit the "
+        "single-ray query: \"differ from single\" counts the rays whose t is not "
+        "identical). Embree: rtcIntersect1 per ray (incoherent context), and "
+        "rtcIntersect16 per block (coherent context), Embree's own packets. Two "
+        "threads: each takes half of the blocks. All four interleaved, median of %d "
+        "passes.\n\n",
+        opt.repeats);
+    tables.packets.print();
     if (peer_available()) {
         std::printf("### Agreement of raylab with Embree\n\n");
         tables.agree.print();

@@ -2,183 +2,21 @@
 // queries with the reference's intersection tests inlined into the BVH traversal.
 //
 // Not a module: no student writes it, and it ships only compiled, inside the reference
-// library, because it repeats the reference's numerics. Each test below computes only t,
-// with exactly the operations of its module (solutions/03_plane.cpp, 04_sphere.cpp,
-// 05_triangle.cpp; -ffp-contract=off keeps them unfused), so it accepts exactly the
-// primitives the module accepts, and builds the nearest one's Hit with the module's
-// expressions.
-// tests/framework/test_engine.cpp renders scenes both ways and compares, and
-// tests/stress runs on both paths. The tests are repeated here, not shared through a
-// header: each file of solutions/ must stay a self-contained module file, since the
-// class tests grade copies of them as hand-ins (tests/class), and a hand-in has no
-// header beside it.
-#include <algorithm>
-#include <cmath>
-
-#include <glm/gtc/type_ptr.hpp>
-
-#include "raylab/engine.h"
-#include "raylab/scene.h"
+// library, because it repeats the reference's numerics. Each test (engine_kernels.h)
+// computes only t, with exactly the operations of its module (solutions/03_plane.cpp,
+// 04_sphere.cpp, 05_triangle.cpp; -ffp-contract=off keeps them unfused), so it accepts
+// exactly the primitives the module accepts, and builds the nearest one's Hit with the
+// module's expressions. tests/framework/test_engine.cpp renders scenes both ways and
+// compares, and tests/stress runs on both paths. The tests are repeated in
+// engine_kernels.h, which the engine's files share, not shared with the modules: each
+// module file of solutions/ must stay self-contained, since the class tests grade copies
+// of them as hand-ins (tests/class), and a hand-in has no header beside it. The packet
+// query is in engine_packet.cpp.
+#include "engine_kernels.h"
 
 namespace raylab::reference {
 
-namespace {
-
-// intersect_plane's t, or NaN when it returns nullopt
-inline float plane_t(const Ray& r, const Plane& plane, float tmax) {
-    const float wn = glm::dot(r.w, plane.n);
-    if (wn == 0.0f) return NAN;
-    const double dist =
-        glm::dot(DVec3(r.o), DVec3(plane.n)) + static_cast<double>(plane.d);
-    const float t = static_cast<float>(-dist / static_cast<double>(wn));
-    if (!(t >= r.tmin && t <= tmax) || std::isinf(t)) return NAN;
-    return t;
-}
-
-// intersect_sphere's t (Ray Tracing Gems ch. 7; rays starting on the sphere in double,
-// issue 8 B5), or NaN
-inline float sphere_t(const Ray& r, const Vec3& centre, float radius, float tmax) {
-    const Vec3 f = r.o - centre;
-    const float rr = radius * radius, ff = glm::dot(f, f);
-    float c = ff - rr;
-    float b, disc;
-    if (std::abs(c) > 0x1p-16f * (ff + rr)) {
-        b = glm::dot(f, r.w);
-        const Vec3 l = f - b * r.w;
-        disc = rr - glm::dot(l, l);
-    } else {
-        const DVec3 fd = DVec3(r.o) - DVec3(centre), w(r.w);
-        const double rrd = double(radius) * double(radius), bd = glm::dot(fd, w);
-        const DVec3 l = fd - bd * w;
-        c = static_cast<float>(glm::dot(fd, fd) - rrd);
-        b = static_cast<float>(bd);
-        disc = static_cast<float>(rrd - glm::dot(l, l));
-    }
-    if (disc < 0.0f) return NAN;
-    const float q = -b - std::copysign(std::sqrt(disc), b);
-    float t0 = q;
-    float t1 = q != 0.0f ? c / q : 0.0f;
-    if (t0 > t1) std::swap(t0, t1);
-    if (t0 >= r.tmin && t0 <= tmax) return t0;
-    if (t1 >= r.tmin && t1 <= tmax) return t1;
-    return NAN;
-}
-
-// The per-ray part of the watertight test (Woop, Benthin and Wald, JCGT 2013): the
-// permutation that makes the largest |w| component z, and the shear
-struct WoopRay {
-    double ox, oy, oz;
-    int kx, ky, kz;
-    double sx, sy, sz;
-    bool valid;  // false: w = 0, every triangle is missed
-
-    explicit WoopRay(const Ray& r) {
-        const float ax = std::abs(r.w.x), ay = std::abs(r.w.y), az = std::abs(r.w.z);
-        kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
-        kx = kz == 2 ? 0 : kz + 1;
-        ky = kx == 2 ? 0 : kx + 1;
-        const float* w = glm::value_ptr(r.w);
-        const float* o = glm::value_ptr(r.o);
-        const double Wz = w[kz];
-        valid = Wz != 0.0;
-        sz = valid ? 1.0 / Wz : 0.0;
-        sx = -double(w[kx]) * sz;
-        sy = -double(w[ky]) * sz;
-        ox = o[kx], oy = o[ky], oz = o[kz];
-    }
-    // Components loaded by index: glm's operator[] is a switch, which costs a third of
-    // the test
-    void transform(const Vec3& vertex, double& x, double& y, double& z) const {
-        const float* v = glm::value_ptr(vertex);
-        z = double(v[kz]) - oz;
-        x = (double(v[kx]) - ox) + sx * z;
-        y = (double(v[ky]) - oy) + sy * z;
-    }
-};
-
-// What intersect_triangle's Hit holds besides t, position and normal
-struct TriangleExtra {
-    Vec2 uv;
-    double td, dt;  // t in double and its error bound (pbrt-v4's deltaT)
-};
-
-// intersect_triangle's t, or NaN: the same operations (and the same decisions); on a
-// hit, its uv in extra. degenerate: the scene's flag for this triangle
-inline float triangle_t(const Ray& r, const WoopRay& q, const SceneTriangle& tri,
-                        bool degenerate, float tmax, TriangleExtra& extra) {
-    if (!q.valid) return NAN;
-    double x0, y0, z0, x1, y1, z1, x2, y2, z2;
-    q.transform(tri.v0, x0, y0, z0);
-    q.transform(tri.v1, x1, y1, z1);
-    q.transform(tri.v2, x2, y2, z2);
-    const double e0 = x1 * y2 - y1 * x2;
-    const double e1 = x2 * y0 - y2 * x0;
-    const double e2 = x0 * y1 - y0 * x1;
-    const bool any_negative = (e0 < 0) | (e1 < 0) | (e2 < 0);
-    const bool any_positive = (e0 > 0) | (e1 > 0) | (e2 > 0);
-    if (any_negative & any_positive) return NAN;
-    const double det = e0 + e1 + e2;
-    if (det == 0.0) return NAN;
-    z0 *= q.sz, z1 *= q.sz, z2 *= q.sz;
-    const double t_scaled = e0 * z0 + e1 * z1 + e2 * z2;
-    const double inv_det = 1.0 / det;
-    const double td = t_scaled * inv_det;
-    // The module's last two tests, t's range and then t > 0, in the other order: a
-    // candidate behind the nearest hit so far is refused before the bound
-    const float t = static_cast<float>(td);
-    if (!(t >= r.tmin && t <= tmax)) return NAN;
-    // pbrt-v4 §6.8.7's conservative t > 0, with double's gamma
-    constexpr double u = 0.5 * std::numeric_limits<double>::epsilon();
-    const auto gamma = [](int n) { return n * u / (1 - n * u); };
-    const double max_z = std::max({std::abs(z0), std::abs(z1), std::abs(z2)});
-    const double max_x = std::max({std::abs(x0), std::abs(x1), std::abs(x2)});
-    const double max_y = std::max({std::abs(y0), std::abs(y1), std::abs(y2)});
-    const double dz = gamma(3) * max_z;
-    const double dx = gamma(5) * (max_x + max_z), dy = gamma(5) * (max_y + max_z);
-    const double de = 2 * (gamma(2) * max_x * max_y + dy * max_x + dx * max_y);
-    const double max_e = std::max({std::abs(e0), std::abs(e1), std::abs(e2)});
-    const double dt =
-        3 * (gamma(3) * max_e * max_z + de * max_z + dz * max_e) * std::abs(inv_det);
-    if (!(td > dt)) return NAN;
-    // The module also refuses a triangle whose normal has no length: the scene marks
-    // those at commit() (Scene::degenerate); the nearest hit's normal is computed once,
-    // or read from the scene (Scene::face_normal)
-    if (degenerate) return NAN;
-    extra.uv = Vec2(static_cast<float>(e1 * inv_det), static_cast<float>(e2 * inv_det));
-    extra.td = td;
-    extra.dt = dt;
-    return t;
-}
-
-// The scene's spheres and triangles as the BVH's slots name them (spheres first,
-// triangles after them), read once per query
-struct Primitives {
-    const std::uint32_t* order;  // slot -> primitive
-    const SceneSphere* spheres;
-    const SceneTriangle* triangles;
-    std::uint32_t sphere_count;
-    const Scene& scene;
-
-    explicit Primitives(const Scene& s)
-        : order(s.bvh().prims().data()),
-          spheres(s.spheres.data()),
-          triangles(s.triangles.data()),
-          sphere_count(static_cast<std::uint32_t>(s.spheres.size())),
-          scene(s) {}
-
-    // t of primitive p, or NaN
-    float t(const Ray& r, const WoopRay& q, std::uint32_t p, float tmax,
-            TriangleExtra& extra) const {
-        if (p < sphere_count) {
-            const Sphere& sphere = spheres[p].sphere;
-            return sphere_t(r, sphere.c, sphere.r, tmax);
-        }
-        const std::uint32_t k = p - sphere_count;
-        // The flag is read for every test, not only for one that passes: its load then
-        // overlaps the test (read last, Cornell box random rays were 2 % slower)
-        return triangle_t(r, q, triangles[k], scene.degenerate(k), tmax, extra);
-    }
-};
+namespace engine_kernels {
 
 // The nearest primitive and its Hit as its module returns it: t, position, normal, uv
 // (material and shading normal are the scene's to fill)
@@ -224,58 +62,14 @@ void closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, Hit&
             },
         counters.bvh_nodes);
     if (best.kind == PrimRef::Kind::none && !in_bvh) return;
-    // The module's Hit, from the values of the accepted test (same expressions)
-    hit = Hit{};
-    hit.t = best_t;
-    hit.position = r.o + best_t * r.w;
-    if (!in_bvh) {
-        hit.n = scene.planes[best.index].plane.n;
-        return;
-    }
-    const std::uint32_t p = best_prim;
-    if (p < prims.sphere_count) {
-        const Sphere& sphere = prims.spheres[p].sphere;
-        hit.n = (hit.position - sphere.c) / sphere.r;
-        best = {PrimRef::Kind::sphere, p};
-        return;
-    }
-    const std::uint32_t k = p - prims.sphere_count;
-    const SceneTriangle& tri = prims.triangles[k];
-    // intersect_triangle's normal: commit()'s, where the scene keeps it
-    hit.n = scene.has_face_normals() ? scene.face_normal(k) : unit_normal(tri);
-    hit.uv = best_extra.uv;
-    // The hit point from t in double, when its error bound (pbrt-v4's deltaT, above)
-    // shows it within 2^-30 of its size of the exact intersection of the ray with the
-    // triangle's plane, the point the scene's refinement computes (raylab/refine.h):
-    // rounded to float, at most 1/64 of an ulp more from it, and no plane normal, dot
-    // products and division on the way (a fifth of a Cornell box camera ray). A
-    // coordinate all three vertices share is the plane's, exactly, as the refinement's
-    // projection gives it. Otherwise (grazing rays, a far camera) the scene refines
-    const DVec3 o(r.o), w(r.w);
-    DVec3 at = o + best_extra.td * w;
-    const auto max_abs = [](const DVec3& v) {
-        return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-    };
-    // deltaT bounds the error of t only for |w| <= 1: its shear terms take z after the
-    // division by w_kz, and the rounding of the shear, about 3u |z| before it, is missed
-    // when |w_kz| > 1 (review: a ray with |w| = 1e6 was 2592 deltaT off). Ray::w is
-    // unit by contract; a longer one takes the scene's refinement. deltaT also leaves
-    // out the determinant's own rounding, which can make it up to twice too small: it
-    // counts twice here (the review's largest error over deltaT in 27,000 exact cases
-    // was 0.09)
-    const double W = max_abs(w);
-    const bool refined =
-        W <= 1.0 &&
-        2.0 * best_extra.dt * W + 0x1p-52 * (max_abs(o) + std::abs(best_extra.td) * W) <=
-            0x1p-30 * max_abs(at);
-    if (refined) {
-        for (int a = 0; a < 3; ++a) {
-            if (tri.v0[a] == tri.v1[a] && tri.v0[a] == tri.v2[a]) at[a] = tri.v0[a];
-        }
-        hit.position = Vec3(at);
-    }
-    best = {PrimRef::Kind::triangle, k, refined};
+    finish_hit(scene, prims, r, best_t, in_bvh, best_prim, best_extra, hit, best);
 }
+
+}  // namespace engine_kernels
+
+namespace {
+
+using namespace engine_kernels;
 
 bool any_hit(const Scene& scene, const Ray& r, TraceCounters& counters) {
     for (const ScenePlane& p : scene.planes) {
@@ -303,8 +97,12 @@ bool any_hit(const Scene& scene, const Ray& r, TraceCounters& counters) {
 }  // namespace
 
 const GeometryEngine* geometry_engine() {
-    static const GeometryEngine engine{&intersect_plane, &intersect_sphere,
-                                       &intersect_triangle, &closest_hit, &any_hit};
+    static const GeometryEngine engine{&intersect_plane,
+                                       &intersect_sphere,
+                                       &intersect_triangle,
+                                       &engine_kernels::closest_hit,
+                                       &any_hit,
+                                       &engine_kernels::closest_hit_packet};
     return &engine;
 }
 

@@ -91,9 +91,63 @@ class PixelShader {
     // The next tile's kept camera hits (CameraHits): reuse them in order, or keep them
     void begin_tile(std::vector<CameraHits::Sample>* hits, bool reuse, bool keep) {
         tile_hits_ = hits;
+        source_ = hits;
         cursor_ = 0;
         reuse_ = reuse;
         keep_ = keep;
+        last_frame_ = reuse;
+    }
+
+    // Traces the tile's camera rays ahead of its pixel loop, in packets of 4 x 4 pixels
+    // (Scene::closest_hits): the pixel loop then takes them as it takes kept hits, in the
+    // reference loop's order (rows top to bottom, columns left to right), while it asks
+    // for the same points. Only where the scene traces packets (the reference's engine),
+    // and not over hits kept from the last frame. A pixel loop that asks in another order
+    // takes the rest of the tile one ray at a time, and this thread stops tracing ahead
+    // for the rest of the frame.
+    void trace_ahead(const Tile& tile) {
+        if (last_frame_ || ahead_off_ || !scene_.traces_packets(modules_)) return;
+        const int W = settings_.width, H = settings_.height;
+        const int tw = tile.x1 - tile.x0, th = tile.y1 - tile.y0;
+        ahead_.resize(size_t(tw) * size_t(th));
+        rays_.clear();
+        slots_.clear();
+        // Row-major samples; rays gathered block by block
+        for (int by = 0; by < th; by += 4)
+            for (int bx = 0; bx < tw; bx += 4)
+                for (int y = by; y < std::min(by + 4, th); ++y)
+                    for (int x = bx; x < std::min(bx + 4, tw); ++x) {
+                        const size_t slot = size_t(y) * size_t(tw) + size_t(x);
+                        CameraHits::Sample& s = ahead_[slot];
+                        s.uv = modules_.image_plane_point(tile.x0 + x, tile.y0 + y, W, H);
+                        // Made in place: a Ray written by field and then copied whole
+                        // stalls on the copy (store-to-load forwarding fails), which
+                        // was a quarter of this loop
+                        s.traced = camera_ray(s.uv, rays_.emplace_back());
+                        s.hit.reset();
+                        if (!s.traced) {
+                            rays_.pop_back();
+                            continue;
+                        }
+                        slots_.push_back(slot);
+                    }
+        hits_.resize(rays_.size());
+        scene_.closest_hits(modules_, rays_.data(), static_cast<int>(rays_.size()),
+                            counters_.trace, hits_.data());
+        counters_.camera_rays += rays_.size();
+        for (size_t k = 0; k < slots_.size(); ++k)
+            ahead_[slots_[k]].hit = hits_[k];
+        source_ = &ahead_;
+        cursor_ = 0;
+        reuse_ = true;
+    }
+
+    // After the tile's pixel loop: did it take every ray traced ahead, in order?
+    void end_tile() {
+        if (source_ != &ahead_) return;
+        if (cursor_ != ahead_.size()) ahead_off_ = true;
+        source_ = tile_hits_;
+        reuse_ = false;
     }
 
     Vec3 radiance(const Vec2& uv, std::optional<Hit>* hit_out = nullptr,
@@ -107,11 +161,8 @@ class PixelShader {
         const CameraHits::Sample* kept = kept_sample(uv);
         const std::optional<Hit> hit =
             kept ? kept->hit : cast_camera_ray(uv, ray, traced);
-        if (kept) {
-            traced = kept->traced;  // (the ray itself is not kept: shading needs the hit)
-        } else if (keep_) {
-            tile_hits_->push_back({uv, traced, hit});
-        }
+        if (kept) traced = kept->traced;  // (the ray is not kept: shading needs the hit)
+        if (keep_) tile_hits_->push_back({uv, traced, hit});
         if (!traced) return settings_.background;
         if (ray_out) *ray_out = ray;
         if (hit_out) *hit_out = hit;
@@ -134,29 +185,35 @@ class PixelShader {
     // The kept camera hit of uv while the pixel loop asks for the kept points in the
     // same order; nullptr once out of step (the rest of the tile is cast)
     const CameraHits::Sample* kept_sample(const Vec2& uv) {
-        if (reuse_ && cursor_ < tile_hits_->size() && (*tile_hits_)[cursor_].uv == uv) {
-            ++counters_.camera_rays_reused;
-            return &(*tile_hits_)[cursor_++];
+        if (reuse_ && cursor_ < source_->size() && (*source_)[cursor_].uv == uv) {
+            if (last_frame_) ++counters_.camera_rays_reused;
+            return &(*source_)[cursor_++];
         }
         reuse_ = false;
         return nullptr;
     }
 
-    // The camera ray through uv and its closest hit; traced: false when the camera
-    // module's ray is not valid
-    std::optional<Hit> cast_camera_ray(const Vec2& uv, Ray& ray, bool& traced) {
-        // The framework boundary normalises w (docs/style.md rule 9). The module's ray is
-        // read by component: a copy of the whole waits for the module's stores to finish
-        // (a failed store-to-load forwarding), 6 % of a Cornell frame on one thread
-        // (raylab-bench section 3)
+    // The camera module's ray through uv, its w normalised (the framework boundary,
+    // docs/style.md rule 9); false when the ray is not valid (not traced). The module's
+    // ray is read by component: a copy of the whole waits for the module's stores to
+    // finish (a failed store-to-load forwarding), 6 % of a Cornell frame on one thread
+    // (raylab-bench section 3)
+    bool camera_ray(const Vec2& uv, Ray& ray) const {
         const Ray r = modules_.camera_ray(camera_, uv);
         const float len = glm::length(r.w);
-        traced = len > 0.0f && std::isfinite(len) && is_finite(r.o);
-        if (!traced) return std::nullopt;
+        if (!(len > 0.0f && std::isfinite(len) && is_finite(r.o))) return false;
         ray.o = r.o;
         ray.w = r.w / len;
         ray.tmin = r.tmin;
         ray.tmax = r.tmax;
+        return true;
+    }
+
+    // The camera ray through uv and its closest hit; traced: false when the camera
+    // module's ray is not valid
+    std::optional<Hit> cast_camera_ray(const Vec2& uv, Ray& ray, bool& traced) {
+        traced = camera_ray(uv, ray);
+        if (!traced) return std::nullopt;
         ++counters_.camera_rays;
         return scene_.closest_hit(modules_, ray, counters_.trace);
     }
@@ -218,9 +275,17 @@ class PixelShader {
     Vec3 centre_;                       // area lights face the scene's centre
     Vec2 uv_{0.0f};                     // the camera sample being shaded
     std::vector<Vec2> xi_;              // light sample points
-    std::vector<CameraHits::Sample>* tile_hits_ = nullptr;  // this tile's kept hits
-    size_t cursor_ = 0;                                     // the next one to reuse
+    std::vector<CameraHits::Sample>* tile_hits_ = nullptr;     // this tile's kept hits
+    const std::vector<CameraHits::Sample>* source_ = nullptr;  // hits taken in order
+    size_t cursor_ = 0;                                        // the next one to take
     bool reuse_ = false, keep_ = false;
+    bool last_frame_ = false;  // source_ holds the last frame's hits (CameraHits)
+    // The tile's camera rays traced ahead in packets (trace_ahead)
+    std::vector<CameraHits::Sample> ahead_;
+    std::vector<Ray> rays_;
+    std::vector<size_t> slots_;
+    std::vector<std::optional<Hit>> hits_;
+    bool ahead_off_ = false;  // the pixel loop asked out of order: no more for this frame
 };
 
 // What CameraHits are keyed on besides the view and size: the functions that make camera
@@ -300,7 +365,7 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
             kept->tiles.resize(static_cast<size_t>(tile_count));
         }
     }
-    // One pass over all tiles on all threads; pass(tile, radiance) renders a tile
+    // One pass over all tiles on all threads; pass(tile, radiance, shader) renders a tile
     const auto run_pass = [&](const auto& pass) {
         std::atomic<int> next{0};
         std::vector<std::exception_ptr> errors(static_cast<size_t>(threads));
@@ -319,7 +384,7 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
                     const Tile tile{x0, y0, std::min(x0 + kTileSize, settings.width),
                                     std::min(y0 + kTileSize, settings.height)};
                     if (kept) shader.begin_tile(&kept->tiles[size_t(t)], reuse, !reuse);
-                    pass(tile, radiance);
+                    pass(tile, radiance, shader);
                 }
             } catch (...) {
                 errors[k] = std::current_exception();
@@ -338,17 +403,20 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
     const bool adaptive = settings.sampling == PixelSampling::adaptive;
     if (!detail::supersampled(settings) || adaptive) {
         // Module 01's pixel loop: one ray through each pixel centre
-        run_pass([&](const Tile& tile, const PixelRadiance& radiance) {
-            modules.render_tile(tile, radiance, view_out);
-        });
+        run_pass(
+            [&](const Tile& tile, const PixelRadiance& radiance, PixelShader& shader) {
+                shader.trace_ahead(tile);
+                modules.render_tile(tile, radiance, view_out);
+                shader.end_tile();
+            });
     } else {
-        run_pass([&](const Tile& tile, const PixelRadiance& radiance) {
+        run_pass([&](const Tile& tile, const PixelRadiance& radiance, PixelShader&) {
             detail::render_tile_sampled(tile, radiance, view_out, settings, modules);
         });
     }
     if (detail::supersampled(settings) && adaptive) {
         const Image first = image;
-        run_pass([&](const Tile& tile, const PixelRadiance& radiance) {
+        run_pass([&](const Tile& tile, const PixelRadiance& radiance, PixelShader&) {
             detail::refine_tile(tile, radiance, first, view_out, settings, modules);
         });
     }

@@ -1,6 +1,7 @@
 // Scene validation and queries (raylab/scene.h).
 #include "raylab/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -250,6 +251,32 @@ std::optional<Hit> Scene::engine_closest_hit(const GeometryEngine& engine, const
     else
         complete(*hit, r, prim);
     return hit;
+}
+
+void Scene::closest_hits(const ModuleTable& modules, const Ray* rays, int n,
+                         TraceCounters& counters, std::optional<Hit>* out) const {
+    const GeometryEngine* engine = engine_for(modules);
+    if (!engine) {
+        for (int k = 0; k < n; ++k)
+            out[k] = closest_hit(modules, rays[k], counters);
+        return;
+    }
+    constexpr int P = GeometryEngine::kPacketSize;
+    Hit hits[P];
+    PrimRef prims[P];
+    for (int first = 0; first < n; first += P) {
+        const int m = std::min(P, n - first);
+        engine->closest_hit_packet(*this, rays + first, m, counters, hits, prims);
+        for (int k = 0; k < m; ++k) {
+            std::optional<Hit>& hit = out[first + k];
+            if (prims[k].kind == PrimRef::Kind::none) {
+                hit.reset();
+            } else {
+                hit = hits[k];
+                complete(*hit, rays[first + k], prims[k]);
+            }
+        }
+    }
 }
 
 std::optional<Hit> Scene::closest_hit(const ModuleTable& modules, const Ray& r,

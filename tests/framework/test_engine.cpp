@@ -297,8 +297,15 @@ TEST_SUITE("engine") {
             Image a, b;
             const FrameStats sa = render(scene, scene.view, settings, fast, a);
             const FrameStats sb = render(scene, scene.view, settings, slow, b);
+            CHECK(sa.camera_rays == sb.camera_rays);
             CHECK(sa.shadow_rays == sb.shadow_rays);
-            CHECK(sa.intersection_tests == sb.intersection_tests);
+            // The engine's camera rays travel in packets (render() traces a tile ahead),
+            // which visit leaves in their own order: a ray may test a primitive that its
+            // own walk would have skipped behind a nearer hit, never many (each ray tests
+            // only the leaves whose box it meets). Without that per-ray box test the
+            // terrain's packets ran 14 times the tests
+            CHECK(sa.intersection_tests >= sb.intersection_tests * 9 / 10);
+            CHECK(sa.intersection_tests <= sb.intersection_tests * 5 / 4);
             size_t different = 0, lit = 0;
             for (size_t k = 0; k < a.pixels.size(); ++k) {
                 const Vec3 d = glm::abs(a.pixels[k] - b.pixels[k]);

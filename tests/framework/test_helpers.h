@@ -5,14 +5,17 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <ostream>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <doctest/doctest.h>
 
 #include "raylab/contract.h"
 #include "raylab/modules.h"
+#include "raylab/renderer.h"
 #include "raylab/scene.h"
 
 namespace raylab {
@@ -125,6 +128,53 @@ inline bool check_both_paths(const Scene& scene, const ModuleTable& fast,
                    scene.closest_hit(slow, leave, cs));
     CHECK(scene.any_hit(fast, leave, cf) == scene.any_hit(slow, leave, cs));
     return true;
+}
+
+/// The same Hit to the bit (the packet must be the single-ray query, not close to it).
+inline void check_identical(const std::optional<Hit>& a, const std::optional<Hit>& b) {
+    REQUIRE(a.has_value() == b.has_value());
+    if (!a) return;
+    CHECK(std::memcmp(&a->t, &b->t, sizeof(float)) == 0);
+    CHECK(a->position == b->position);
+    CHECK(a->n == b->n);
+    CHECK(a->ns == b->ns);
+    CHECK(a->uv == b->uv);
+    CHECK(a->material == b->material);
+}
+
+/// rays through Scene::closest_hits (packets, with the reference's engine) against each
+/// through closest_hit, bit for bit; returns how many hit.
+inline int check_packets(const Scene& scene, const std::vector<Ray>& rays,
+                         TraceCounters& counters) {
+    const ModuleTable modules = engine_table();
+    std::vector<std::optional<Hit>> out(rays.size());
+    scene.closest_hits(modules, rays.data(), static_cast<int>(rays.size()), counters,
+                       out.data());
+    int hits = 0;
+    for (size_t k = 0; k < rays.size(); ++k) {
+        INFO("ray " << k << ": " << rays[k]);
+        TraceCounters single;
+        const std::optional<Hit> one = scene.closest_hit(modules, rays[k], single);
+        check_identical(out[k], one);
+        hits += one.has_value();
+    }
+    return hits;
+}
+
+/// The reference camera's rays of a W x H image in blocks of 4 x 4 pixels (packets).
+inline std::vector<Ray> camera_blocks(const View& view, int W, int H) {
+    const ModuleTable m = engine_table();
+    const PinholeCamera camera = make_camera(m, view);
+    std::vector<Ray> rays;
+    for (int by = 0; by < H; by += 4)
+        for (int bx = 0; bx < W; bx += 4)
+            for (int j = by; j < std::min(by + 4, H); ++j)
+                for (int i = bx; i < std::min(bx + 4, W); ++i) {
+                    Ray r = m.camera_ray(camera, m.image_plane_point(i, j, W, H));
+                    r.w = r.w / glm::length(r.w);
+                    rays.push_back(r);
+                }
+    return rays;
 }
 
 /// The scene moved by `by`, lights and view with it: far from the origin, where float

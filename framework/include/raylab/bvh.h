@@ -138,6 +138,26 @@ class Bvh {
         walk<false>(r, visit, nodes_visited);
     }
 
+    /// A packet of rays from one origin o whose direction components each keep one sign
+    /// and are never zero: per axis, the range [inv_lo, inv_hi] of the rays' 1 / w
+    /// (each computed as RaySlabs does). Its slab test of a box gives a lower bound of
+    /// every ray's entry distance and an upper bound of every exit, so it accepts every
+    /// box that one of the rays accepts in traverse() (rounding is monotone).
+    struct Frustum {
+        Vec3 o{0.0f};
+        Vec3 inv_lo{0.0f}, inv_hi{0.0f};
+        float tmin = 0.0f;  ///< the smallest tmin of the rays
+    };
+    /// Visits every leaf whose box a ray of the packet may meet, nearer boxes first (by
+    /// the frustum's entry distance), one slab test per node for the whole packet.
+    /// visit(first, count, box) tests the leaf's slots [first, first + count) for the
+    /// rays that meet the leaf's box (each its own slab test) and returns the largest
+    /// tmax of the packet's rays after it: boxes entered beyond it are skipped. tmax: the
+    /// largest tmax of the rays at the start.
+    template <class Visit>
+    void traverse_frustum(const Frustum& f, float tmax, Visit&& visit,
+                          std::uint64_t& nodes_visited) const;
+
   private:
     template <bool Sorted, class Visit>
     void walk(const Ray& r, Visit& visit, std::uint64_t& nodes_visited) const;
@@ -164,6 +184,17 @@ class Bvh {
     }
     static int hit_children(const Node& n, const Ray4& r, float tmin, float tmax,
                             float t_enter[kWidth]);
+    // The frustum, broadcast: per axis the origin and the range of 1 / w
+    struct Frustum4 {
+#if RAYLAB_SSE2
+        __m128 o[3], inv_lo[3], inv_hi[3];
+#else
+        float o[3], inv_lo[3], inv_hi[3];
+#endif
+        int near[3];
+    };
+    static int frustum_children(const Node& n, const Frustum4& f, float tmin, float tmax,
+                                float t_enter[kWidth]);
 
     std::vector<Node> nodes_;
     std::vector<std::uint32_t> prims_;
@@ -302,6 +333,125 @@ void Bvh::walk(const Ray& r, Visit& visit, std::uint64_t& nodes_visited) const {
             --top;
         } while (stack[top].t_enter > tmax * kSlabGrow);
         child = stack[top].child;
+    }
+}
+
+// The frustum's slab test of a node's boxes: per axis, the near plane's distance with
+// the smaller and the far plane's with the larger of the two reciprocals bound every
+// ray's (x * inv rounds monotonically in inv for a fixed x = plane - o, which all rays
+// share). No NaN: the reciprocals are finite and not zero, and an unused slot's infinite
+// planes give +-inf.
+inline int Bvh::frustum_children(const Node& n, const Frustum4& f, float tmin, float tmax,
+                                 float t_enter[kWidth]) {
+#if RAYLAB_SSE2
+    int mask = 0;
+    for (int g = 0; g < kWidth; g += 4) {
+        __m128 enter = _mm_set1_ps(tmin), exit = _mm_set1_ps(tmax);
+        for (int a = 0; a < 3; ++a) {
+            const __m128 dn =
+                _mm_sub_ps(_mm_load_ps(n.box[2 * a + f.near[a]] + g), f.o[a]);
+            const __m128 df =
+                _mm_sub_ps(_mm_load_ps(n.box[2 * a + 1 - f.near[a]] + g), f.o[a]);
+            enter = _mm_max_ps(
+                _mm_min_ps(_mm_mul_ps(dn, f.inv_lo[a]), _mm_mul_ps(dn, f.inv_hi[a])),
+                enter);
+            exit = _mm_min_ps(
+                _mm_max_ps(_mm_mul_ps(df, f.inv_lo[a]), _mm_mul_ps(df, f.inv_hi[a])),
+                exit);
+        }
+        _mm_store_ps(t_enter + g, enter);
+        mask |=
+            _mm_movemask_ps(_mm_cmple_ps(enter, _mm_mul_ps(exit, _mm_set1_ps(kSlabGrow))))
+            << g;
+    }
+    return mask;
+#else
+    int mask = 0;
+    for (int k = 0; k < kWidth; ++k) {
+        float enter = tmin, exit = tmax;
+        for (int a = 0; a < 3; ++a) {
+            const float dn = n.box[2 * a + f.near[a]][k] - f.o[a];
+            const float df = n.box[2 * a + 1 - f.near[a]][k] - f.o[a];
+            const float lo = dn * f.inv_lo[a], hi = dn * f.inv_hi[a];
+            const float t_near = lo < hi ? lo : hi;
+            const float flo = df * f.inv_lo[a], fhi = df * f.inv_hi[a];
+            const float t_far = flo > fhi ? flo : fhi;
+            enter = t_near > enter ? t_near : enter;
+            exit = t_far < exit ? t_far : exit;
+        }
+        t_enter[k] = enter;
+        mask |= (enter <= exit * kSlabGrow) << k;
+    }
+    return mask;
+#endif
+}
+
+template <class Visit>
+void Bvh::traverse_frustum(const Frustum& fr, float tmax, Visit&& visit,
+                           std::uint64_t& nodes_visited) const {
+    if (prims_.empty()) return;
+    if (root_ & kLeaf) {
+        // One small leaf: its box is the scene's bounds
+        visit(root_ & kFirstMask, root_ >> kCountShift & 7u, bounds_);
+        return;
+    }
+    Frustum4 f;
+    for (int a = 0; a < 3; ++a) {
+#if RAYLAB_SSE2
+        f.o[a] = _mm_set1_ps(fr.o[a]);
+        f.inv_lo[a] = _mm_set1_ps(fr.inv_lo[a]);
+        f.inv_hi[a] = _mm_set1_ps(fr.inv_hi[a]);
+#else
+        f.o[a] = fr.o[a];
+        f.inv_lo[a] = fr.inv_lo[a];
+        f.inv_hi[a] = fr.inv_hi[a];
+#endif
+        f.near[a] = std::signbit(fr.inv_lo[a]) ? 1 : 0;
+    }
+    // A waiting child, its entry distance, and where its box is: node * kWidth + slot
+    struct Entry {
+        std::uint32_t child;
+        float t_enter;
+        std::uint32_t box;
+    };
+    Entry stack[(kWidth - 1) * 72 + 8];
+    int top = 0;
+    std::uint32_t child = root_, box = 0;
+    for (;;) {
+        if (child & kLeaf) {
+            const Node& n = nodes_[box / kWidth];
+            const std::uint32_t k = box % kWidth;
+            const Aabb leaf{Vec3(n.box[0][k], n.box[2][k], n.box[4][k]),
+                            Vec3(n.box[1][k], n.box[3][k], n.box[5][k])};
+            tmax = visit(child & kFirstMask, child >> kCountShift & 7u, leaf);
+        } else {
+            const Node& node = nodes_[child];
+            ++nodes_visited;
+            alignas(16) float t[kWidth];
+            int mask = frustum_children(node, f, fr.tmin, tmax, t);
+            if (mask != 0) {
+                // Hit children farthest first onto the stack; take the top one
+                const int first = top;
+                for (; mask != 0; mask &= mask - 1) {
+                    const int k = __builtin_ctz(static_cast<unsigned>(mask));
+                    const Entry e{node.child[k], t[k], child * kWidth + std::uint32_t(k)};
+                    int j = top++;
+                    for (; j > first && stack[j - 1].t_enter < e.t_enter; --j)
+                        stack[j] = stack[j - 1];
+                    stack[j] = e;
+                }
+                --top;
+                child = stack[top].child;
+                box = stack[top].box;
+                continue;
+            }
+        }
+        do {
+            if (top == 0) return;
+            --top;
+        } while (stack[top].t_enter > tmax * kSlabGrow);
+        child = stack[top].child;
+        box = stack[top].box;
     }
 }
 

@@ -45,6 +45,16 @@ struct GeometryEngine {
                         Hit& hit, PrimRef& prim);
     /// What the module path's any-hit returns.
     bool (*any_hit)(const Scene& scene, const Ray& r, TraceCounters& counters);
+    /// closest_hit for each of n <= kPacketSize rays at once (hits[k], prims[k] for
+    /// rays[k], bit for bit): a packet of rays from one origin, as a block of a tile's
+    /// camera rays, shares one walk of the BVH (a frustum test per node) and runs each
+    /// triangle's test on four rays at a time. Rays that cannot travel together (other
+    /// origins, a direction component of either sign or zero, another dominant axis) and
+    /// rays whose nearest hit is a tie between primitives (the order of the visit
+    /// decides it) take closest_hit. Counters count the tests and nodes it runs.
+    void (*closest_hit_packet)(const Scene& scene, const Ray* rays, int n,
+                               TraceCounters& counters, Hit* hits, PrimRef* prims);
+    static constexpr int kPacketSize = 16;
 };
 
 namespace reference {

@@ -119,6 +119,18 @@ class Scene {
     std::optional<Hit> closest_hit(const ModuleTable& modules, const Ray& r,
                                    TraceCounters& counters) const;
 
+    /// closest_hit of each of n rays: out[k] is closest_hit(modules, rays[k], counters),
+    /// bit for bit. With the reference's engine, rays from one origin (a block of camera
+    /// rays) travel in packets of GeometryEngine::kPacketSize (raylab/engine.h).
+    void closest_hits(const ModuleTable& modules, const Ray* rays, int n,
+                      TraceCounters& counters, std::optional<Hit>* out) const;
+
+    /// True when closest_hits traces packets for this table: the reference's engine runs
+    /// its queries.
+    bool traces_packets(const ModuleTable& modules) const {
+        return engine_for(modules) != nullptr;
+    }
+
     /// True when anything lies on r in [tmin, tmax]; stops at the first hit.
     bool any_hit(const ModuleTable& modules, const Ray& r, TraceCounters& counters) const;
 

@@ -1,0 +1,372 @@
+// The reference engine's packet query (GeometryEngine::closest_hit_packet): up to 16 rays
+// from one origin, as a 4 x 4 block of a tile's camera rays, walk the BVH together (one
+// frustum slab test per node, Bvh::traverse_frustum) and test each triangle four rays at
+// a time, with exactly the single-ray query's operations on exactly its values, so each
+// ray gets closest_hit's result bit for bit (tests/framework/test_packets.cpp).
+//
+// Why it is faster: the walk's node tests, stack and branches are paid once per packet;
+// with one origin, a triangle's vertices minus the origin (the watertight test's
+// translation, in double) are computed once per packet, and the rest of the test runs on
+// four rays in vectors of four doubles (two SSE2 registers each on the x86-64 baseline).
+//
+// Why it gives the same hits: every ray's test is the scalar test's sequence of IEEE
+// operations (-ffp-contract=off), the frustum visits every leaf a ray's own walk would
+// visit (Bvh::Frustum), and the nearest accepted hit is the same whatever the order of
+// the visit, except for a tie: two primitives accepted at the same t, where the
+// single-ray walk keeps the one it visits last. A ray that meets a tie is traced again
+// alone.
+#include <cstring>
+
+#include "engine_kernels.h"
+
+// Vectors of four doubles pass between this file's helpers, which are always inlined (so
+// never called across the AVX2 and the baseline code below, whose ABIs for them differ):
+// g++ and clang warn about that ABI all the same
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+// On x86-64 the query is compiled twice, for the baseline (SSE2) and for AVX2, and the
+// processor chooses at run time (as Embree does): AVX2 runs four doubles in one register.
+// The same IEEE operations either way, without FMA, so the same bits (tests/stress runs
+// both: the matrix's -DRAYLAB_NO_SIMD build takes the baseline)
+#if defined(__x86_64__) && !defined(__AVX2__) && !defined(RAYLAB_NO_SIMD)
+#define RAYLAB_PACKET_AVX2 1
+#else
+#define RAYLAB_PACKET_AVX2 0
+#endif
+#define RAYLAB_INLINE inline __attribute__((always_inline))
+
+namespace raylab::reference::engine_kernels {
+
+namespace {
+
+// Four lanes of doubles, their comparison masks, four floats (GCC and clang vector
+// extensions: SSE2 pairs on the baseline, one AVX register where the target has it)
+using D4 = double __attribute__((vector_size(32)));
+using M4 = long long __attribute__((vector_size(32)));
+using F4 = float __attribute__((vector_size(16)));
+using I4 = int __attribute__((vector_size(16)));
+
+constexpr int kLanes = 4;
+constexpr int kMaxRays = GeometryEngine::kPacketSize;
+
+RAYLAB_INLINE D4 broadcast(double x) {
+    return D4{x, x, x, x};
+}
+RAYLAB_INLINE D4 load(const double* p) {
+    D4 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+RAYLAB_INLINE D4 select(const M4& m, const D4& a, const D4& b) {
+    return (D4)((m & (M4)a) | (~m & (M4)b));
+}
+// std::abs: clears the sign bit of each lane
+RAYLAB_INLINE D4 abs4(const D4& x) {
+    constexpr long long kMagnitude = 0x7fffffffffffffffll;
+    return (D4)((M4)x & M4{kMagnitude, kMagnitude, kMagnitude, kMagnitude});
+}
+// std::max({a, b, c}): the first of the largest (max_element's rule, NaN included)
+RAYLAB_INLINE D4 max3(const D4& a, const D4& b, const D4& c) {
+    const D4 ab = select((M4)(a < b), b, a);
+    return select((M4)(ab < c), c, ab);
+}
+RAYLAB_INLINE bool none(const M4& m) {
+    return (m[0] | m[1] | m[2] | m[3]) == 0;
+}
+
+// The packet: the rays, their per-ray watertight shear (WoopRay) with the one
+// permutation they share, and each ray's nearest hit so far
+struct Packet {
+    const Ray* rays;
+    int n;
+    int kx, ky, kz;
+    double ox, oy, oz;  // the shared origin, permuted
+    alignas(32) double sx[kMaxRays], sy[kMaxRays], sz[kMaxRays];
+    alignas(32) double tmin[kMaxRays], tmax[kMaxRays];  // floats, held exactly
+    long long active[kMaxRays];  // all ones for a ray of the packet, 0 for padding
+    alignas(16) float o[3];      // the shared origin
+    alignas(16) float inv_w[3][kMaxRays];  // 1 / w per axis, as the single-ray walk's
+    float best_t[kMaxRays];
+    bool has_best[kMaxRays], in_bvh[kMaxRays], tie[kMaxRays];
+    std::uint32_t best_prim[kMaxRays];
+    TriangleExtra extra[kMaxRays];
+
+    // Accepts primitive p at t for ray k: the single-ray walk's update, and a tie noted
+    RAYLAB_INLINE void accept(int k, float t, std::uint32_t p) {
+        tie[k] = tie[k] || (has_best[k] && t == best_t[k]);
+        best_t[k] = t;
+        tmax[k] = t;
+        best_prim[k] = p;
+        has_best[k] = in_bvh[k] = true;
+    }
+};
+
+// Whether the rays can travel as one packet, and if so its set-up: one origin, every
+// direction component of one sign and not zero (the frustum), one dominant axis (the
+// triangle test's permutation). The divisions run on whole vectors: 1 / w_kz for four
+// rays at a time, and the frustum's reciprocals only for the extreme components (1 / w
+// rounds monotonically, so the extremes of the rays' 1 / w are those of 1 / w_min and
+// 1 / w_max)
+RAYLAB_INLINE bool make_packet(const Ray* rays, int n, Packet& pk, Bvh::Frustum& f) {
+    const Ray& r0 = rays[0];
+    pk.rays = rays;
+    pk.n = n;
+    pk.kz = WoopRay::dominant_axis(r0.w);
+    pk.kx = WoopRay::next_axis(pk.kz);
+    pk.ky = WoopRay::next_axis(pk.kx);
+    const float* o = glm::value_ptr(r0.o);
+    pk.ox = o[pk.kx], pk.oy = o[pk.ky], pk.oz = o[pk.kz];
+    f.o = r0.o;
+    f.tmin = r0.tmin;
+    Vec3 w_lo = r0.w, w_hi = r0.w;
+    alignas(32) double wx[kMaxRays], wy[kMaxRays], wz[kMaxRays];
+    for (int k = 0; k < kMaxRays; ++k) {
+        const Ray& r = rays[k < n ? k : 0];  // padding lanes repeat ray 0
+        if (!(r.o == r0.o) || WoopRay::dominant_axis(r.w) != pk.kz) return false;
+        for (int a = 0; a < 3; ++a) {
+            if (!(r0.w[a] > 0.0f ? r.w[a] > 0.0f : r.w[a] < 0.0f)) return false;
+        }
+        const float* w = glm::value_ptr(r.w);
+        wx[k] = w[pk.kx], wy[k] = w[pk.ky], wz[k] = w[pk.kz];
+        for (int a = 0; a < 3; ++a)
+            pk.inv_w[a][k] = w[a];
+        w_lo = glm::min(w_lo, r.w);
+        w_hi = glm::max(w_hi, r.w);
+        f.tmin = std::min(f.tmin, r.tmin);
+        pk.tmin[k] = r.tmin;
+        pk.active[k] = k < n ? -1 : 0;
+        pk.has_best[k] = pk.in_bvh[k] = pk.tie[k] = false;
+    }
+    for (int a = 0; a < 3; ++a) {
+        // The reciprocals as the single-ray walk computes them (Bvh::walk)
+        const float lo = 1.0f / w_hi[a], hi = 1.0f / w_lo[a];
+        if (!std::isfinite(lo) || !std::isfinite(hi) || lo == 0.0f || hi == 0.0f)
+            return false;
+        f.inv_lo[a] = lo;
+        f.inv_hi[a] = hi;
+    }
+    // Each ray's 1 / w for its slab tests of the leaves' boxes (leaf_mask)
+    for (int a = 0; a < 3; ++a) {
+        pk.o[a] = r0.o[a];
+        for (int g = 0; g < kMaxRays; g += kLanes) {
+            F4 w;
+            std::memcpy(&w, pk.inv_w[a] + g, sizeof w);
+            const F4 inv = F4{1.0f, 1.0f, 1.0f, 1.0f} / w;
+            std::memcpy(pk.inv_w[a] + g, &inv, sizeof inv);
+        }
+    }
+    // WoopRay's shear, four rays at a time (w_kz is not zero: every component is not)
+    for (int g = 0; g < kMaxRays; g += kLanes) {
+        const D4 sz = broadcast(1.0) / load(wz + g);
+        const D4 sx = -load(wx + g) * sz, sy = -load(wy + g) * sz;
+        std::memcpy(pk.sx + g, &sx, sizeof sx);
+        std::memcpy(pk.sy + g, &sy, sizeof sy);
+        std::memcpy(pk.sz + g, &sz, sizeof sz);
+    }
+    return true;
+}
+
+// All ones for the rays of the packet among lanes g .. g + 3, 0 for padding
+RAYLAB_INLINE M4 active4(const Packet& pk, int g) {
+    M4 m;
+    std::memcpy(&m, pk.active + g, sizeof m);
+    return m;
+}
+
+// Which of rays g .. g + 3 meet box within their own [tmin, tmax]: the single-ray walk's
+// slab test (Bvh::hit_children) on each, so a ray whose walk would not test the leaf
+// does not test it here either (all of a packet's 1 / w_a share a sign, so each axis's
+// entry plane is the same for all)
+RAYLAB_INLINE M4 leaf_mask(const Packet& pk, int g, const Aabb& box) {
+    F4 enter = __builtin_convertvector(load(pk.tmin + g), F4);
+    F4 exit = __builtin_convertvector(load(pk.tmax + g), F4);
+    for (int a = 0; a < 3; ++a) {
+        F4 inv;
+        std::memcpy(&inv, pk.inv_w[a] + g, sizeof inv);
+        const bool positive = !std::signbit(pk.inv_w[a][0]);
+        const float d_near = (positive ? box.lo[a] : box.hi[a]) - pk.o[a];
+        const float d_far = (positive ? box.hi[a] : box.lo[a]) - pk.o[a];
+        const F4 t_near = F4{d_near, d_near, d_near, d_near} * inv;
+        const F4 t_far = F4{d_far, d_far, d_far, d_far} * inv;
+        enter = (F4)(((I4)(t_near > enter) & (I4)t_near) |
+                     (~(I4)(t_near > enter) & (I4)enter));
+        exit = (F4)(((I4)(t_far < exit) & (I4)t_far) | (~(I4)(t_far < exit) & (I4)exit));
+    }
+    const F4 grow{kSlabGrow, kSlabGrow, kSlabGrow, kSlabGrow};
+    return __builtin_convertvector((I4)(enter <= exit * grow), M4) & active4(pk, g);
+}
+
+// triangle_t for four rays of the packet (lanes g .. g + 3): the same operations, the
+// vertices' translation computed once
+RAYLAB_INLINE void test_triangle4(Packet& pk, int g, const double (&v)[3][3],
+                                  std::uint32_t p, const M4& rays) {
+    const D4 sx = load(pk.sx + g), sy = load(pk.sy + g), sz = load(pk.sz + g);
+    D4 x[3], y[3], z[3];
+    for (int i = 0; i < 3; ++i) {
+        z[i] = broadcast(v[i][2]);
+        x[i] = broadcast(v[i][0]) + sx * z[i];
+        y[i] = broadcast(v[i][1]) + sy * z[i];
+    }
+    const D4 e0 = x[1] * y[2] - y[1] * x[2];
+    const D4 e1 = x[2] * y[0] - y[2] * x[0];
+    const D4 e2 = x[0] * y[1] - y[0] * x[1];
+    const D4 zero = broadcast(0.0);
+    const M4 any_negative = (M4)(e0 < zero) | (M4)(e1 < zero) | (M4)(e2 < zero);
+    const M4 any_positive = (M4)(e0 > zero) | (M4)(e1 > zero) | (M4)(e2 > zero);
+    const D4 det = e0 + e1 + e2;
+    M4 ok = ~(any_negative & any_positive) & (M4)(det != zero) & rays;
+    if (none(ok)) return;
+    for (int i = 0; i < 3; ++i)
+        z[i] = z[i] * sz;
+    const D4 t_scaled = e0 * z[0] + e1 * z[1] + e2 * z[2];
+    const D4 inv_det = broadcast(1.0) / det;
+    const D4 td = t_scaled * inv_det;
+    // t rounded to float, held exactly as a double: its comparisons are the float ones
+    const F4 t = __builtin_convertvector(td, F4);
+    const D4 tf = __builtin_convertvector(t, D4);
+    ok &= (M4)(tf >= load(pk.tmin + g)) & (M4)(tf <= load(pk.tmax + g));
+    if (none(ok)) return;
+    constexpr double u = 0.5 * std::numeric_limits<double>::epsilon();
+    const auto gamma = [](int n) { return broadcast(n * u / (1 - n * u)); };
+    const D4 max_z = max3(abs4(z[0]), abs4(z[1]), abs4(z[2]));
+    const D4 max_x = max3(abs4(x[0]), abs4(x[1]), abs4(x[2]));
+    const D4 max_y = max3(abs4(y[0]), abs4(y[1]), abs4(y[2]));
+    const D4 dz = gamma(3) * max_z;
+    const D4 dx = gamma(5) * (max_x + max_z), dy = gamma(5) * (max_y + max_z);
+    const D4 de = broadcast(2.0) * (gamma(2) * max_x * max_y + dy * max_x + dx * max_y);
+    const D4 max_e = max3(abs4(e0), abs4(e1), abs4(e2));
+    const D4 dt = broadcast(3.0) * (gamma(3) * max_e * max_z + de * max_z + dz * max_e) *
+                  abs4(inv_det);
+    ok &= (M4)(td > dt);
+    for (int l = 0; l < kLanes; ++l) {
+        if (!ok[l]) continue;
+        const int k = g + l;
+        pk.accept(k, t[l], p);
+        pk.extra[k].uv = Vec2(static_cast<float>(e1[l] * inv_det[l]),
+                              static_cast<float>(e2[l] * inv_det[l]));
+        pk.extra[k].td = td[l];
+        pk.extra[k].dt = dt[l];
+    }
+}
+
+// The query (GeometryEngine::closest_hit_packet), inlined into each compiled version
+// below
+RAYLAB_INLINE void packet_query(const Scene& scene, const Ray* rays, int n,
+                                TraceCounters& counters, Hit* hits, PrimRef* prims) {
+    Packet pk;
+    Bvh::Frustum f;
+    if (n < 2 || n > kMaxRays || !make_packet(rays, n, pk, f)) {
+        for (int k = 0; k < n; ++k)
+            closest_hit(scene, rays[k], counters, hits[k], prims[k]);
+        return;
+    }
+    // Planes: each ray's own loop, as closest_hit's
+    float packet_tmax = -kInfinity;
+    for (int k = 0; k < n; ++k) {
+        const Ray& r = rays[k];
+        prims[k] = PrimRef{};
+        float best_t = r.tmax;
+        for (size_t j = 0; j < scene.planes.size(); ++j) {
+            const float t = plane_t(r, scene.planes[j].plane, best_t);
+            if (!std::isnan(t)) {
+                best_t = t;
+                prims[k] = {PrimRef::Kind::plane, static_cast<std::uint32_t>(j)};
+                pk.has_best[k] = true;
+            }
+        }
+        pk.best_t[k] = best_t;
+        pk.tmax[k] = best_t;
+        packet_tmax = std::max(packet_tmax, best_t);
+    }
+    for (int k = n; k < kMaxRays; ++k)
+        pk.tmax[k] = pk.tmax[0];
+    counters.intersection_tests += std::uint64_t(n) * scene.planes.size();
+    const Primitives prim(scene);
+    const int groups = (n + kLanes - 1) / kLanes;
+    scene.bvh().traverse_frustum(
+        f, packet_tmax,
+        [&](std::uint32_t first, std::uint32_t count,
+            const Aabb& box) __attribute__((always_inline)) {
+            // The rays that meet the leaf's box, by groups of four
+            M4 in_box[kMaxRays / kLanes];
+            int meet = 0;
+            for (int g = 0; g < groups; ++g) {
+                in_box[g] = leaf_mask(pk, g * kLanes, box);
+                for (int l = 0; l < kLanes; ++l)
+                    meet += in_box[g][l] != 0;
+            }
+            if (meet == 0) return packet_tmax;
+            counters.intersection_tests += std::uint64_t(count) * std::uint64_t(meet);
+            for (std::uint32_t s = first; s < first + count; ++s) {
+                const std::uint32_t p = prim.order[s];
+                if (p < prim.sphere_count) {
+                    // Spheres: each ray's own test
+                    const Sphere& sphere = prim.spheres[p].sphere;
+                    for (int k = 0; k < n; ++k) {
+                        if (!in_box[k / kLanes][k % kLanes]) continue;
+                        const float t = sphere_t(rays[k], sphere.c, sphere.r, pk.tmax[k]);
+                        if (!std::isnan(t)) pk.accept(k, t, p);
+                    }
+                    continue;
+                }
+                const std::uint32_t j = p - prim.sphere_count;
+                if (scene.degenerate(j)) continue;  // the module refuses it for every ray
+                // The translation, once: the vertices minus the origin, permuted
+                const SceneTriangle& tri = prim.triangles[j];
+                const Vec3* vs[3] = {&tri.v0, &tri.v1, &tri.v2};
+                double v[3][3];
+                for (int i = 0; i < 3; ++i) {
+                    const float* c = glm::value_ptr(*vs[i]);
+                    v[i][2] = double(c[pk.kz]) - pk.oz;
+                    v[i][0] = double(c[pk.kx]) - pk.ox;
+                    v[i][1] = double(c[pk.ky]) - pk.oy;
+                }
+                for (int g = 0; g < groups; ++g) {
+                    if (!none(in_box[g])) test_triangle4(pk, g * kLanes, v, p, in_box[g]);
+                }
+            }
+            packet_tmax = -kInfinity;
+            for (int k = 0; k < n; ++k)
+                packet_tmax = std::max(packet_tmax, static_cast<float>(pk.tmax[k]));
+            return packet_tmax;
+        },
+        counters.bvh_nodes);
+    // Each ray's Hit as closest_hit builds it; a tie, alone again
+    for (int k = 0; k < n; ++k) {
+        if (pk.tie[k]) {
+            closest_hit(scene, rays[k], counters, hits[k], prims[k]);
+        } else if (pk.in_bvh[k] || prims[k].kind != PrimRef::Kind::none) {
+            finish_hit(scene, prim, rays[k], pk.best_t[k], pk.in_bvh[k], pk.best_prim[k],
+                       pk.extra[k], hits[k], prims[k]);
+        }
+    }
+}
+
+// The two versions: flatten inlines every call, the BVH's walk and the leaf visit too, so
+// that all of the query is compiled for the version's target
+__attribute__((flatten)) void packet_baseline(const Scene& scene, const Ray* rays, int n,
+                                              TraceCounters& counters, Hit* hits,
+                                              PrimRef* prims) {
+    packet_query(scene, rays, n, counters, hits, prims);
+}
+#if RAYLAB_PACKET_AVX2
+__attribute__((target("avx2"), flatten)) void packet_avx2(const Scene& scene,
+                                                          const Ray* rays, int n,
+                                                          TraceCounters& counters,
+                                                          Hit* hits, PrimRef* prims) {
+    packet_query(scene, rays, n, counters, hits, prims);
+}
+#endif
+
+}  // namespace
+
+void closest_hit_packet(const Scene& scene, const Ray* rays, int n,
+                        TraceCounters& counters, Hit* hits, PrimRef* prims) {
+#if RAYLAB_PACKET_AVX2
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    if (avx2) return packet_avx2(scene, rays, n, counters, hits, prims);
+#endif
+    packet_baseline(scene, rays, n, counters, hits, prims);
+}
+
+}  // namespace raylab::reference::engine_kernels
