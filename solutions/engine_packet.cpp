@@ -15,64 +15,13 @@
 // the visit, except for a tie: two primitives accepted at the same t, where the
 // single-ray walk keeps the one it visits last. A ray that meets a tie is traced again
 // alone.
-#include <cstring>
-
-#include "engine_kernels.h"
-
-// Vectors of four doubles pass between this file's helpers, which are always inlined (so
-// never called across the AVX2 and the baseline code below, whose ABIs for them differ):
-// g++ and clang warn about that ABI all the same
-#pragma GCC diagnostic ignored "-Wpsabi"
-
-// On x86-64 the query is compiled twice, for the baseline (SSE2) and for AVX2, and the
-// processor chooses at run time (as Embree does): AVX2 runs four doubles in one register.
-// The same IEEE operations either way, without FMA, so the same bits (tests/stress runs
-// both: the matrix's -DRAYLAB_NO_SIMD build takes the baseline)
-#if defined(__x86_64__) && !defined(__AVX2__) && !defined(RAYLAB_NO_SIMD)
-#define RAYLAB_PACKET_AVX2 1
-#else
-#define RAYLAB_PACKET_AVX2 0
-#endif
-#define RAYLAB_INLINE inline __attribute__((always_inline))
+#include "engine_simd.h"
 
 namespace raylab::reference::engine_kernels {
 
 namespace {
 
-// Four lanes of doubles, their comparison masks, four floats (GCC and clang vector
-// extensions: SSE2 pairs on the baseline, one AVX register where the target has it)
-using D4 = double __attribute__((vector_size(32)));
-using M4 = long long __attribute__((vector_size(32)));
-using F4 = float __attribute__((vector_size(16)));
-using I4 = int __attribute__((vector_size(16)));
-
-constexpr int kLanes = 4;
 constexpr int kMaxRays = GeometryEngine::kPacketSize;
-
-RAYLAB_INLINE D4 broadcast(double x) {
-    return D4{x, x, x, x};
-}
-RAYLAB_INLINE D4 load(const double* p) {
-    D4 v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-}
-RAYLAB_INLINE D4 select(const M4& m, const D4& a, const D4& b) {
-    return (D4)((m & (M4)a) | (~m & (M4)b));
-}
-// std::abs: clears the sign bit of each lane
-RAYLAB_INLINE D4 abs4(const D4& x) {
-    constexpr long long kMagnitude = 0x7fffffffffffffffll;
-    return (D4)((M4)x & M4{kMagnitude, kMagnitude, kMagnitude, kMagnitude});
-}
-// std::max({a, b, c}): the first of the largest (max_element's rule, NaN included)
-RAYLAB_INLINE D4 max3(const D4& a, const D4& b, const D4& c) {
-    const D4 ab = select((M4)(a < b), b, a);
-    return select((M4)(ab < c), c, ab);
-}
-RAYLAB_INLINE bool none(const M4& m) {
-    return (m[0] | m[1] | m[2] | m[3]) == 0;
-}
 
 // The packet: the rays, their per-ray watertight shear (WoopRay) with the one
 // permutation they share, and each ray's nearest hit so far
@@ -200,52 +149,17 @@ RAYLAB_INLINE M4 leaf_mask(const Packet& pk, int g, const Aabb& box) {
 // vertices' translation computed once
 RAYLAB_INLINE void test_triangle4(Packet& pk, int g, const double (&v)[3][3],
                                   std::uint32_t p, const M4& rays) {
-    const D4 sx = load(pk.sx + g), sy = load(pk.sy + g), sz = load(pk.sz + g);
-    D4 x[3], y[3], z[3];
-    for (int i = 0; i < 3; ++i) {
-        z[i] = broadcast(v[i][2]);
-        x[i] = broadcast(v[i][0]) + sx * z[i];
-        y[i] = broadcast(v[i][1]) + sy * z[i];
-    }
-    const D4 e0 = x[1] * y[2] - y[1] * x[2];
-    const D4 e1 = x[2] * y[0] - y[2] * x[0];
-    const D4 e2 = x[0] * y[1] - y[0] * x[1];
-    const D4 zero = broadcast(0.0);
-    const M4 any_negative = (M4)(e0 < zero) | (M4)(e1 < zero) | (M4)(e2 < zero);
-    const M4 any_positive = (M4)(e0 > zero) | (M4)(e1 > zero) | (M4)(e2 > zero);
-    const D4 det = e0 + e1 + e2;
-    M4 ok = ~(any_negative & any_positive) & (M4)(det != zero) & rays;
-    if (none(ok)) return;
-    for (int i = 0; i < 3; ++i)
-        z[i] = z[i] * sz;
-    const D4 t_scaled = e0 * z[0] + e1 * z[1] + e2 * z[2];
-    const D4 inv_det = broadcast(1.0) / det;
-    const D4 td = t_scaled * inv_det;
-    // t rounded to float, held exactly as a double: its comparisons are the float ones
-    const F4 t = __builtin_convertvector(td, F4);
-    const D4 tf = __builtin_convertvector(t, D4);
-    ok &= (M4)(tf >= load(pk.tmin + g)) & (M4)(tf <= load(pk.tmax + g));
-    if (none(ok)) return;
-    constexpr double u = 0.5 * std::numeric_limits<double>::epsilon();
-    const auto gamma = [](int n) { return broadcast(n * u / (1 - n * u)); };
-    const D4 max_z = max3(abs4(z[0]), abs4(z[1]), abs4(z[2]));
-    const D4 max_x = max3(abs4(x[0]), abs4(x[1]), abs4(x[2]));
-    const D4 max_y = max3(abs4(y[0]), abs4(y[1]), abs4(y[2]));
-    const D4 dz = gamma(3) * max_z;
-    const D4 dx = gamma(5) * (max_x + max_z), dy = gamma(5) * (max_y + max_z);
-    const D4 de = broadcast(2.0) * (gamma(2) * max_x * max_y + dy * max_x + dx * max_y);
-    const D4 max_e = max3(abs4(e0), abs4(e1), abs4(e2));
-    const D4 dt = broadcast(3.0) * (gamma(3) * max_e * max_z + de * max_z + dz * max_e) *
-                  abs4(inv_det);
-    ok &= (M4)(td > dt);
+    const D4 vx[3] = {broadcast(v[0][0]), broadcast(v[1][0]), broadcast(v[2][0])};
+    const D4 vy[3] = {broadcast(v[0][1]), broadcast(v[1][1]), broadcast(v[2][1])};
+    const D4 vz[3] = {broadcast(v[0][2]), broadcast(v[1][2]), broadcast(v[2][2])};
+    Triangle4 r;
+    if (!triangle_t4(vx, vy, vz, load(pk.sx + g), load(pk.sy + g), load(pk.sz + g),
+                     load(pk.tmin + g), load(pk.tmax + g), rays, r))
+        return;
     for (int l = 0; l < kLanes; ++l) {
-        if (!ok[l]) continue;
-        const int k = g + l;
-        pk.accept(k, t[l], p);
-        pk.extra[k].uv = Vec2(static_cast<float>(e1[l] * inv_det[l]),
-                              static_cast<float>(e2[l] * inv_det[l]));
-        pk.extra[k].td = td[l];
-        pk.extra[k].dt = dt[l];
+        if (!r.ok[l]) continue;
+        pk.accept(g + l, r.t[l], p);
+        pk.extra[g + l] = lane_extra(r, l);
     }
 }
 
@@ -342,31 +256,17 @@ RAYLAB_INLINE void packet_query(const Scene& scene, const Ray* rays, int n,
     }
 }
 
-// The two versions: flatten inlines every call, the BVH's walk and the leaf visit too, so
-// that all of the query is compiled for the version's target
-__attribute__((flatten)) void packet_baseline(const Scene& scene, const Ray* rays, int n,
-                                              TraceCounters& counters, Hit* hits,
-                                              PrimRef* prims) {
-    packet_query(scene, rays, n, counters, hits, prims);
-}
-#if RAYLAB_PACKET_AVX2
-__attribute__((target("avx2"), flatten)) void packet_avx2(const Scene& scene,
-                                                          const Ray* rays, int n,
-                                                          TraceCounters& counters,
-                                                          Hit* hits, PrimRef* prims) {
-    packet_query(scene, rays, n, counters, hits, prims);
-}
-#endif
+// The query compiled for the baseline and, on x86-64, for AVX2 (engine_simd.h)
+RAYLAB_ENGINE_VERSIONS(packet_query, void, packet_versions,
+                       (const Scene& scene, const Ray* rays, int n,
+                        TraceCounters& counters, Hit* hits, PrimRef* prims),
+                       (scene, rays, n, counters, hits, prims))
 
 }  // namespace
 
 void closest_hit_packet(const Scene& scene, const Ray* rays, int n,
                         TraceCounters& counters, Hit* hits, PrimRef* prims) {
-#if RAYLAB_PACKET_AVX2
-    static const bool avx2 = __builtin_cpu_supports("avx2");
-    if (avx2) return packet_avx2(scene, rays, n, counters, hits, prims);
-#endif
-    packet_baseline(scene, rays, n, counters, hits, prims);
+    packet_versions(scene, rays, n, counters, hits, prims);
 }
 
 }  // namespace raylab::reference::engine_kernels
