@@ -138,6 +138,22 @@ TEST_SUITE("packets") {
             rays.push_back({eye, w, 0.1f * float(k % 3), k % 4 == 0 ? 3.5f : kInfinity});
         }
         check_packets(scene, rays, counters);
+        // A NaN or infinite range in one ray of a packet that could travel together
+        std::vector<Ray> together;
+        for (int k = 0; k < 16; ++k)
+            together.push_back({eye,
+                                glm::normalize(Vec3(0.01f * float(k + 1), 0.1f, -1.0f)),
+                                0.0f, kInfinity});
+        for (const float bad : {NAN, -kInfinity, kInfinity}) {
+            for (const int k : {0, 3}) {  // the first ray sets up the frustum
+                std::vector<Ray> one = together;
+                one[k].tmin = bad;
+                check_packets(scene, one, counters);
+                one[k].tmin = 0.0f;
+                one[k].tmax = bad;
+                check_packets(scene, one, counters);
+            }
+        }
         rays.resize(5);
         check_packets(scene, rays, counters);
         rays.resize(1);
