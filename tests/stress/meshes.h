@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "raylab/math.h"
+#include "raylab/scene.h"
 
 namespace raylab {
 
@@ -80,6 +81,27 @@ inline Mesh placed(Mesh m, float scale, const Vec3& at) {
     for (Vec3& x : m.v)
         x = at + scale * x;
     return m;
+}
+
+// The mesh as a committed scene of one material
+inline Scene scene_of(const Mesh& m) {
+    Scene scene;
+    scene.materials.push_back(Material{});
+    for (const auto& t : m.f)
+        scene.triangles.push_back(SceneTriangle{m.v[t[0]], m.v[t[1]], m.v[t[2]]});
+    scene.commit();
+    return scene;
+}
+
+// Every vertex, and points at 1/4, 1/3 and 1/2 along every edge of every face: where rays
+// slip between triangles if any test lets them
+inline std::vector<Vec3> vertex_and_edge_points(const Mesh& m) {
+    std::vector<Vec3> targets = m.v;
+    for (const auto& t : m.f)
+        for (int e = 0; e < 3; ++e)
+            for (const float s : {0.5f, 0.25f, 1.0f / 3.0f})
+                targets.push_back(m.v[t[e]] + s * (m.v[t[(e + 1) % 3]] - m.v[t[e]]));
+    return targets;
 }
 
 }  // namespace raylab

@@ -41,19 +41,9 @@ TEST_SUITE("stress closed meshes") {
                     Rng rng(seed);
                     const Vec3 at(D, -0.5f * D, 0.25f * D);
                     const Mesh m = placed(unit, scale, at);
-                    Scene scene;
-                    scene.materials.push_back(Material{});
-                    for (const auto& t : m.f)
-                        scene.triangles.push_back(
-                            SceneTriangle{m.v[t[0]], m.v[t[1]], m.v[t[2]]});
-                    scene.commit();
+                    const Scene scene = scene_of(m);
                     // Targets: every vertex and points along every edge
-                    std::vector<Vec3> targets = m.v;
-                    for (const auto& t : m.f)
-                        for (int e = 0; e < 3; ++e)
-                            for (const float s : {0.5f, 0.25f, 1.0f / 3.0f})
-                                targets.push_back(m.v[t[e]] +
-                                                  s * (m.v[t[(e + 1) % 3]] - m.v[t[e]]));
+                    const std::vector<Vec3> targets = vertex_and_edge_points(m);
                     for (const Vec3& target : targets) {
                         // Origins inside: the centre (axis-aligned rays through the
                         // octahedron's vertices) and random points within 0.3 scale of it
