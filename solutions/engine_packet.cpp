@@ -52,10 +52,10 @@ struct Packet {
 
 // Whether the rays can travel as one packet, and if so its set-up: one origin, every
 // direction component of one sign and not zero (the frustum), one dominant axis (the
-// triangle test's permutation), no NaN range. The divisions run on whole vectors: 1 /
-// w_kz for four rays at a time, and the frustum's reciprocals only for the extreme
-// components (1 / w rounds monotonically, so the extremes of the rays' 1 / w are those of
-// 1 / w_min and 1 / w_max)
+// triangle test's permutation), a range from tmin >= 0. The divisions run on whole
+// vectors: 1 / w_kz for four rays at a time, and the frustum's reciprocals only for the
+// extreme components (1 / w rounds monotonically, so the extremes of the rays' 1 / w are
+// those of 1 / w_min and 1 / w_max)
 RAYLAB_INLINE bool make_packet(const Ray* rays, int n, Packet& pk, Bvh::Frustum& f) {
     const Ray& r0 = rays[0];
     pk.rays = rays;
@@ -72,8 +72,12 @@ RAYLAB_INLINE bool make_packet(const Ray* rays, int n, Packet& pk, Bvh::Frustum&
     for (int k = 0; k < kMaxRays; ++k) {
         const Ray& r = rays[k < n ? k : 0];  // padding lanes repeat ray 0
         if (!(r.o == r0.o) || WoopRay::dominant_axis(r.w) != pk.kz) return false;
-        // A NaN range goes by the single-ray walk's own rules
-        if (std::isnan(r.tmin) || std::isnan(r.tmax)) return false;
+        // A range that starts behind the origin (or is NaN) goes by the single-ray walk's
+        // own rules: the slab test's margin (exit * kSlabGrow) shrinks for a negative
+        // exit, and a packet that visits the leaves in another order could then skip one
+        // holding a hit a few ulps nearer than its first (review: two spheres behind the
+        // origin, hits 2 ulps apart). Camera rays start at 0
+        if (!(r.tmin >= 0.0f) || std::isnan(r.tmax)) return false;
         for (int a = 0; a < 3; ++a) {
             if (!(r0.w[a] > 0.0f ? r.w[a] > 0.0f : r.w[a] < 0.0f)) return false;
         }
