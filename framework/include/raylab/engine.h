@@ -49,9 +49,10 @@ struct GeometryEngine {
     /// rays[k], bit for bit): a packet of rays from one origin, as a block of a tile's
     /// camera rays, shares one walk of the BVH (a frustum test per node) and runs each
     /// triangle's test on four rays at a time. Rays that cannot travel together (other
-    /// origins, a direction component of either sign or zero, another dominant axis) and
-    /// rays whose nearest hit is a tie between primitives (the order of the visit
-    /// decides it) take closest_hit. Counters count the tests and nodes it runs.
+    /// origins, a direction component of either sign or zero, another dominant axis, a
+    /// tmin below 0 or a NaN range) and rays whose nearest hit is a tie between
+    /// primitives (the order of the visit decides it) take closest_hit. Counters count
+    /// the tests and nodes it runs.
     void (*closest_hit_packet)(const Scene& scene, const Ray* rays, int n,
                                TraceCounters& counters, Hit* hits, PrimRef* prims);
     static constexpr int kPacketSize = 16;
