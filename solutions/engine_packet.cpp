@@ -252,8 +252,10 @@ RAYLAB_INLINE void packet_query(const Scene& scene, const Ray* rays, int n,
         },
         counters.bvh_nodes);
     // Each ray's Hit as closest_hit builds it; a tie, alone again
+    counters.packet_rays += std::uint64_t(n);
     for (int k = 0; k < n; ++k) {
         if (pk.tie[k]) {
+            --counters.packet_rays;
             closest_hit(scene, rays[k], counters, hits[k], prims[k]);
         } else if (pk.in_bvh[k] || prims[k].kind != PrimRef::Kind::none) {
             finish_hit(scene, prim, rays[k], pk.best_t[k], pk.in_bvh[k], pk.best_prim[k],

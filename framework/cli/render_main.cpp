@@ -151,9 +151,10 @@ int main(int argc, char** argv) {
             options.repeat > 1 ? " (median)" : "", stats.threads,
             static_cast<double>(stats.rays()) / (median * 1e3));
         std::printf(
-            "rays: %llu camera, %llu shadow; shadow rays skipped: %llu light behind "
-            "surface, %llu shadows off\n",
+            "rays: %llu camera (%llu in packets), %llu shadow; shadow rays skipped: %llu "
+            "light behind surface, %llu shadows off\n",
             static_cast<unsigned long long>(stats.camera_rays),
+            static_cast<unsigned long long>(stats.camera_rays_in_packets),
             static_cast<unsigned long long>(stats.shadow_rays),
             static_cast<unsigned long long>(stats.shadow_rays_backfacing),
             static_cast<unsigned long long>(stats.shadow_rays_disabled));

@@ -440,6 +440,8 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
     for (const Counters& c : counters) {
         stats.camera_rays += c.camera_rays;
         stats.camera_rays_reused += c.camera_rays_reused;
+        stats.camera_rays_in_packets +=
+            c.trace.packet_rays;  // only camera rays go in them
         stats.shadow_rays += c.shadow_rays;
         stats.shadow_rays_backfacing += c.backfacing;
         stats.shadow_rays_disabled += c.disabled;

@@ -279,6 +279,7 @@ void stats_section(Viewer& v) {
     if (ImGui::BeginTable("stats", 2,
                           ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
         stat_row("camera rays", st.camera_rays);
+        stat_row("of which in packets", st.camera_rays_in_packets);
         stat_row("skipped: camera hits reused", st.camera_rays_reused);
         stat_row("shadow rays", st.shadow_rays);
         stat_row("skipped: light behind surface", st.shadow_rays_backfacing);

@@ -56,11 +56,12 @@ std::string frame_text(const FrameStats& s) {
     std::snprintf(
         text, sizeof text,
         "frame: %.2f ms on %d threads, %.2f Mrays/s\n"
-        "rays: %llu camera (%llu more reused), %llu shadow; skipped shadow rays: %llu "
-        "light behind surface, %llu shadows off\n"
+        "rays: %llu camera (%llu in packets, %llu more reused), %llu shadow; skipped "
+        "shadow rays: %llu light behind surface, %llu shadows off\n"
         "work: %llu intersection tests, %llu BVH nodes; %llu non-finite pixels\n",
         s.milliseconds, s.threads, s.rays_per_second() * 1e-6,
         static_cast<unsigned long long>(s.camera_rays),
+        static_cast<unsigned long long>(s.camera_rays_in_packets),
         static_cast<unsigned long long>(s.camera_rays_reused),
         static_cast<unsigned long long>(s.shadow_rays),
         static_cast<unsigned long long>(s.shadow_rays_backfacing),

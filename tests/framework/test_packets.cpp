@@ -199,6 +199,11 @@ TEST_SUITE("packets in render") {
         CHECK(a.camera_rays == 80 * 60);
         CHECK(b.camera_rays == 80 * 60);
         CHECK(fast.pixels == slow.pixels);
+        // Nearly all in packets (ties on the edges between triangles, and blocks whose
+        // rays' x changes sign, go alone); none on the module path
+        CHECK(a.camera_rays_in_packets > 80 * 60 * 9 / 10);
+        CHECK(a.camera_rays_in_packets < 80 * 60);
+        CHECK(b.camera_rays_in_packets == 0);
     }
 
     // A student's pixel loop may visit a tile's pixels in another order: it gets the

@@ -112,7 +112,10 @@ struct FrameStats {
     double milliseconds = 0.0;             ///< wall-clock render time
     std::uint64_t camera_rays = 0;         ///< one per pixel, but for reused ones
     std::uint64_t camera_rays_reused = 0;  ///< hits taken from settings.camera_hits
-    std::uint64_t shadow_rays = 0;         ///< any-hit queries cast by the shadow module
+    /// Camera rays traced in packets of 4 x 4 pixels (the reference's engine; the others,
+    /// of camera_rays, one at a time).
+    std::uint64_t camera_rays_in_packets = 0;
+    std::uint64_t shadow_rays = 0;  ///< any-hit queries cast by the shadow module
     std::uint64_t shadow_rays_backfacing = 0;  ///< skipped: light behind the surface
     std::uint64_t shadow_rays_disabled = 0;    ///< skipped: shadows off
     std::uint64_t intersection_tests = 0;      ///< primitive tests of all rays
