@@ -23,11 +23,9 @@ namespace {
 
 constexpr int kMaxRays = GeometryEngine::kPacketSize;
 
-// The packet: the rays, their per-ray watertight shear (WoopRay) with the one
+// The packet: its rays' watertight shear (WoopRay) with the one
 // permutation they share, and each ray's nearest hit so far
 struct Packet {
-    const Ray* rays;
-    int n;
     int kx, ky, kz;
     double ox, oy, oz;  // the shared origin, permuted
     alignas(32) double sx[kMaxRays], sy[kMaxRays], sz[kMaxRays];
@@ -58,8 +56,6 @@ struct Packet {
 // those of 1 / w_min and 1 / w_max)
 RAYLAB_INLINE bool make_packet(const Ray* rays, int n, Packet& pk, Bvh::Frustum& f) {
     const Ray& r0 = rays[0];
-    pk.rays = rays;
-    pk.n = n;
     pk.kz = WoopRay::dominant_axis(r0.w);
     pk.kx = WoopRay::next_axis(pk.kz);
     pk.ky = WoopRay::next_axis(pk.kx);

@@ -78,8 +78,8 @@ void validate(const View& view);
 struct TraceCounters {
     std::uint64_t intersection_tests = 0;  ///< primitive tests (plane, sphere, triangle)
     std::uint64_t bvh_nodes = 0;           ///< BVH nodes whose child boxes were tested
-    std::uint64_t packet_rays =
-        0;  ///< rays closest_hits traced in packets (others: alone)
+    /// Rays closest_hits traced in packets (the others went alone).
+    std::uint64_t packet_rays = 0;
 };
 
 class Scene {
