@@ -13,15 +13,25 @@
 // of them as hand-ins (tests/class), and a hand-in has no header beside it. The packet
 // query is in engine_packet.cpp.
 #include "engine_kernels.h"
+#include "engine_simd.h"
 
 namespace raylab::reference {
 
 namespace engine_kernels {
 
+namespace {
+
+// The single-ray queries read the BVH slots' primitives from a Source: SlotPrimitives
+// (the scene's copy in slot order, in small scenes) or Primitives (through the primitive
+// order). Avx: the walk tests a node's eight boxes in one AVX register (only in the
+// AVX2 version, engine_simd.h)
+
 // The nearest primitive and its Hit as its module returns it: t, position, normal, uv
 // (material and shading normal are the scene's to fill)
-void closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, Hit& hit,
-                 PrimRef& best) {
+template <bool Avx, class Source>
+RAYLAB_INLINE void closest_hit_from(const Scene& scene, const Source& source,
+                                    const Ray& r, TraceCounters& counters, Hit& hit,
+                                    PrimRef& best) {
     best = PrimRef{};
     float best_t = r.tmax;
     for (size_t k = 0; k < scene.planes.size(); ++k) {
@@ -35,73 +45,110 @@ void closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, Hit&
     const WoopRay q(r);
     Ray ray = r;
     ray.tmax = best_t;
-    const Primitives prims(scene);
-    std::uint32_t best_prim = 0;
+    std::uint32_t best_slot = 0;
     bool in_bvh = false;
     // A triangle's test writes its extra only when it accepts, so straight into
     // best_extra: a copy from a local just written stalled the load on the two stores it
     // spans (store-to-load forwarding fails; 1 % of a Cornell box camera ray)
     TriangleExtra best_extra;
     // The leaf visit inlined into the walk (GCC left it a call: its prologue and
-    // epilogue per leaf were 2 % of a Cornell box camera ray; the any-hit walk showed no
-    // gain from the same)
-    scene.bvh().traverse(
-        ray,
-        [&](std::uint32_t first, std::uint32_t count, float& tmax)
-            __attribute__((always_inline)) {
-                counters.intersection_tests += count;
-                for (std::uint32_t k = first; k < first + count; ++k) {
-                    const float t = prims.t(r, q, prims.order[k], tmax, best_extra);
-                    if (!std::isnan(t)) {
-                        tmax = best_t = t;
-                        best_prim = prims.order[k];
-                        in_bvh = true;
-                    }
-                }
-                return false;
-            },
-        counters.bvh_nodes);
+    // epilogue per leaf were 2 % of a Cornell box camera ray)
+    const auto visit = [&](std::uint32_t first, std::uint32_t count, float& tmax)
+        __attribute__((always_inline)) {
+        counters.intersection_tests += count;
+        for (std::uint32_t k = first; k < first + count; ++k) {
+            const float t = source.t(r, q, k, tmax, best_extra);
+            if (!std::isnan(t)) {
+                tmax = best_t = t;
+                best_slot = k;
+                in_bvh = true;
+            }
+        }
+        return false;
+    };
+#if RAYLAB_AVX_NODES
+    if constexpr (Avx) {
+        scene.bvh().traverse_avx(ray, visit, counters.bvh_nodes);
+    } else
+#endif
+    {
+        scene.bvh().traverse(ray, visit, counters.bvh_nodes);
+    }
     if (best.kind == PrimRef::Kind::none && !in_bvh) return;
-    finish_hit(scene, prims, r, best_t, in_bvh, best_prim, best_extra, hit, best);
+    finish_hit(scene, Primitives(scene), r, best_t, in_bvh,
+               in_bvh ? source.prim(best_slot) : 0, best_extra, hit, best);
 }
 
-}  // namespace engine_kernels
+template <bool Avx>
+RAYLAB_INLINE void closest_hit_query(const Scene& scene, const Ray& r,
+                                     TraceCounters& counters, Hit& hit, PrimRef& best) {
+    if (const Scene::SlotPrimitive* slots = scene.slot_primitives())
+        closest_hit_from<Avx>(scene, SlotPrimitives{slots}, r, counters, hit, best);
+    else
+        closest_hit_from<Avx>(scene, Primitives(scene), r, counters, hit, best);
+}
 
-namespace {
-
-using namespace engine_kernels;
-
-bool any_hit(const Scene& scene, const Ray& r, TraceCounters& counters) {
+// True when anything lies on r in [tmin, tmax]
+template <bool Avx, class Source>
+RAYLAB_INLINE bool any_hit_from(const Scene& scene, const Source& source, const Ray& r,
+                                TraceCounters& counters) {
     for (const ScenePlane& p : scene.planes) {
         ++counters.intersection_tests;
         if (!std::isnan(plane_t(r, p.plane, r.tmax))) return true;
     }
     const WoopRay q(r);
-    const Primitives prims(scene);
     bool hit = false;
-    scene.bvh().traverse_any(
-        r,
-        [&](std::uint32_t first, std::uint32_t count, float&) {
-            for (std::uint32_t k = first; k < first + count && !hit; ++k) {
-                ++counters.intersection_tests;
-                TriangleExtra extra;
-                const float t = prims.t(r, q, prims.order[k], r.tmax, extra);
-                hit = !std::isnan(t);
-            }
-            return hit;
-        },
-        counters.bvh_nodes);
+    const auto visit = [&](std::uint32_t first, std::uint32_t count, float&) {
+        for (std::uint32_t k = first; k < first + count && !hit; ++k) {
+            ++counters.intersection_tests;
+            TriangleExtra extra;
+            hit = !std::isnan(source.t(r, q, k, r.tmax, extra));
+        }
+        return hit;
+    };
+#if RAYLAB_AVX_NODES
+    if constexpr (Avx) {
+        scene.bvh().traverse_any_avx(r, visit, counters.bvh_nodes);
+    } else
+#endif
+    {
+        scene.bvh().traverse_any(r, visit, counters.bvh_nodes);
+    }
     return hit;
 }
 
+template <bool Avx>
+RAYLAB_INLINE bool any_hit_query(const Scene& scene, const Ray& r,
+                                 TraceCounters& counters) {
+    if (const Scene::SlotPrimitive* slots = scene.slot_primitives())
+        return any_hit_from<Avx>(scene, SlotPrimitives{slots}, r, counters);
+    return any_hit_from<Avx>(scene, Primitives(scene), r, counters);
+}
+
+// The queries compiled for the baseline and, on x86-64, for AVX2 (engine_simd.h)
+RAYLAB_ENGINE_VERSIONS(closest_hit_query, void, closest_hit_versions,
+                       (const Scene& scene, const Ray& r, TraceCounters& counters,
+                        Hit& hit, PrimRef& best),
+                       (scene, r, counters, hit, best))
+RAYLAB_ENGINE_VERSIONS(any_hit_query, bool, any_hit_versions,
+                       (const Scene& scene, const Ray& r, TraceCounters& counters),
+                       (scene, r, counters))
+
 }  // namespace
+
+void closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, Hit& hit,
+                 PrimRef& best) {
+    closest_hit_versions(scene, r, counters, hit, best);
+}
+
+}  // namespace engine_kernels
 
 const GeometryEngine* geometry_engine() {
     static const GeometryEngine engine{&intersect_plane,
                                        &intersect_sphere,
                                        &intersect_triangle,
                                        &engine_kernels::closest_hit,
-                                       &any_hit,
+                                       &engine_kernels::any_hit_versions,
                                        &engine_kernels::closest_hit_packet};
     return &engine;
 }

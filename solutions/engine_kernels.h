@@ -83,6 +83,12 @@ struct WoopRay {
     }
     // Components loaded by index: glm's operator[] is a switch, which costs a third of
     // the test
+    void transform(const DVec3& vertex, double& x, double& y, double& z) const {
+        const double* v = glm::value_ptr(vertex);
+        z = v[kz] - oz;
+        x = (v[kx] - ox) + sx * z;
+        y = (v[ky] - oy) + sy * z;
+    }
     void transform(const Vec3& vertex, double& x, double& y, double& z) const {
         const float* v = glm::value_ptr(vertex);
         z = double(v[kz]) - oz;
@@ -99,13 +105,14 @@ struct TriangleExtra {
 
 // intersect_triangle's t, or NaN: the same operations (and the same decisions); on a
 // hit, its uv in extra. degenerate: the scene's flag for this triangle
-inline float triangle_t(const Ray& r, const WoopRay& q, const SceneTriangle& tri,
-                        bool degenerate, float tmax, TriangleExtra& extra) {
+template <class V>
+inline float triangle_t(const Ray& r, const WoopRay& q, const V& v0, const V& v1,
+                        const V& v2, bool degenerate, float tmax, TriangleExtra& extra) {
     if (!q.valid) return NAN;
     double x0, y0, z0, x1, y1, z1, x2, y2, z2;
-    q.transform(tri.v0, x0, y0, z0);
-    q.transform(tri.v1, x1, y1, z1);
-    q.transform(tri.v2, x2, y2, z2);
+    q.transform(v0, x0, y0, z0);
+    q.transform(v1, x1, y1, z1);
+    q.transform(v2, x2, y2, z2);
     const double e0 = x1 * y2 - y1 * x2;
     const double e1 = x2 * y0 - y2 * x0;
     const double e2 = x0 * y1 - y0 * x1;
@@ -161,9 +168,11 @@ struct Primitives {
           sphere_count(static_cast<std::uint32_t>(s.spheres.size())),
           scene(s) {}
 
-    // t of primitive p, or NaN
-    float t(const Ray& r, const WoopRay& q, std::uint32_t p, float tmax,
-            TriangleExtra& extra) const {
+    // t of the primitive in slot s, or NaN
+    __attribute__((always_inline)) float t(const Ray& r, const WoopRay& q,
+                                           std::uint32_t s, float tmax,
+                                           TriangleExtra& extra) const {
+        const std::uint32_t p = order[s];
         if (p < sphere_count) {
             const Sphere& sphere = spheres[p].sphere;
             return sphere_t(r, sphere.c, sphere.r, tmax);
@@ -171,7 +180,32 @@ struct Primitives {
         const std::uint32_t k = p - sphere_count;
         // The flag is read for every test, not only for one that passes: its load then
         // overlaps the test (read last, Cornell box random rays were 2 % slower)
-        return triangle_t(r, q, triangles[k], scene.degenerate(k), tmax, extra);
+        const SceneTriangle& tri = triangles[k];
+        return triangle_t(r, q, tri.v0, tri.v1, tri.v2, scene.degenerate(k), tmax, extra);
+    }
+    // The primitive in slot s, as the BVH names it
+    std::uint32_t prim(std::uint32_t s) const { return order[s]; }
+};
+
+// The same tests read from the scene's copy of its primitives in slot order
+// (Scene::slot_primitives), in scenes small enough to keep one: a leaf's primitives lie
+// side by side, and no load of the order comes before each
+struct SlotPrimitives {
+    const Scene::SlotPrimitive* slots;
+
+    // t of the primitive in slot s, or NaN
+    __attribute__((always_inline)) float t(const Ray& r, const WoopRay& q,
+                                           std::uint32_t s, float tmax,
+                                           TriangleExtra& extra) const {
+        const Scene::SlotPrimitive& p = slots[s];
+        if (p.prim & Scene::SlotPrimitive::kSphere)
+            return sphere_t(r, Vec3(p.a), float(p.b.x), tmax);
+        return triangle_t(r, q, p.a, p.b, p.c,
+                          (p.prim & Scene::SlotPrimitive::kDegenerate) != 0, tmax, extra);
+    }
+    // The primitive in slot s, as the BVH names it
+    std::uint32_t prim(std::uint32_t s) const {
+        return slots[s].prim & Scene::SlotPrimitive::kIndexMask;
     }
 };
 

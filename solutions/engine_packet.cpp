@@ -167,6 +167,8 @@ RAYLAB_INLINE void test_triangle4(Packet& pk, int g, const double (&v)[3][3],
 
 // The query (GeometryEngine::closest_hit_packet), inlined into each compiled version
 // below
+// Avx: unused (the packet's walk is a small part of its time)
+template <bool Avx>
 RAYLAB_INLINE void packet_query(const Scene& scene, const Ray* rays, int n,
                                 TraceCounters& counters, Hit* hits, PrimRef* prims) {
     Packet pk;

@@ -11,6 +11,7 @@
 // every product unfused.
 #pragma once
 
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 
@@ -32,29 +33,52 @@
 #endif
 #define RAYLAB_INLINE inline __attribute__((always_inline))
 
-// NAME(PARAMS) runs QUERY(ARGS), an always-inlined function, compiled for AVX2 where the
-// processor has it and for the baseline otherwise. flatten inlines every call of a
-// version, the BVH's walk and the leaf visit too, so all of the query is compiled for the
-// version's target. (The single-ray queries compiled for AVX2 were 3 % faster on the
-// Cornell box's camera rays, which did not pay for a second copy.)
+// NAME(PARAMS) runs QUERY<Avx>(ARGS), an always-inlined function template, compiled for
+// AVX2 where the processor has it (Avx = true) and for the baseline otherwise (false).
+// flatten inlines every call of a version, the BVH's walk and the leaf visit too, so all
+// of the query is compiled for the version's target; Avx lets a query use instructions
+// that only the AVX2 version may (Bvh::traverse_avx's node test). A build for a target
+// with AVX2 (-march=native here) has one version, with Avx = true. The environment
+// variable RAYLAB_NO_AVX2 (any value) makes the processor's choice the baseline, so that
+// tests can run both versions on one machine (scripts/stress-matrix.sh does).
 #if RAYLAB_ENGINE_AVX2
 #define RAYLAB_ENGINE_VERSIONS(QUERY, RESULT, NAME, PARAMS, ARGS)        \
     __attribute__((flatten)) RESULT NAME##_baseline PARAMS {             \
-        return QUERY ARGS;                                               \
+        return QUERY<false> ARGS;                                        \
     }                                                                    \
     __attribute__((target("avx2"), flatten)) RESULT NAME##_avx2 PARAMS { \
-        return QUERY ARGS;                                               \
+        return QUERY<true> ARGS;                                         \
     }                                                                    \
     RESULT NAME PARAMS {                                                 \
-        static const bool avx2 = __builtin_cpu_supports("avx2");         \
-        return avx2 ? NAME##_avx2 ARGS : NAME##_baseline ARGS;           \
+        return ::raylab::reference::engine_kernels::engine_avx2()        \
+                   ? NAME##_avx2 ARGS                                    \
+                   : NAME##_baseline ARGS;                               \
     }
 #else
-#define RAYLAB_ENGINE_VERSIONS(QUERY, RESULT, NAME, PARAMS, ARGS) \
-    __attribute__((flatten)) RESULT NAME PARAMS {                 \
-        return QUERY ARGS;                                        \
+#define RAYLAB_ENGINE_VERSIONS(QUERY, RESULT, NAME, PARAMS, ARGS)           \
+    __attribute__((flatten)) RESULT NAME PARAMS {                           \
+        return QUERY<::raylab::reference::engine_kernels::kAvxTarget> ARGS; \
     }
 #endif
+
+namespace raylab::reference::engine_kernels {
+
+#if RAYLAB_ENGINE_AVX2
+// The processor has AVX2 and RAYLAB_NO_AVX2 is not set: the AVX2 versions run
+inline bool engine_avx2() {
+    static const bool avx2 =
+        __builtin_cpu_supports("avx2") && std::getenv("RAYLAB_NO_AVX2") == nullptr;
+    return avx2;
+}
+#endif
+// The build's own target has AVX2 (one version of each query)
+#if defined(__AVX2__) && RAYLAB_AVX_NODES
+constexpr bool kAvxTarget = true;
+#else
+constexpr bool kAvxTarget = false;
+#endif
+
+}  // namespace raylab::reference::engine_kernels
 
 namespace raylab::reference::engine_kernels {
 

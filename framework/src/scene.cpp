@@ -188,8 +188,28 @@ void Scene::commit() {
     if (!std::isfinite(ambient) || ambient < 0.0f)
         throw Error("ambient term must be finite and non-negative");
     bvh_.build(boxes);
+    std::vector<SlotPrimitive> slots;
+    if (boxes.size() <= kSlotCopyUpTo) {
+        const std::uint32_t sphere_count = static_cast<std::uint32_t>(spheres.size());
+        slots.reserve(boxes.size());
+        for (const std::uint32_t p : bvh_.prims()) {
+            SlotPrimitive s{};
+            if (p < sphere_count) {
+                s.a = spheres[p].sphere.c;
+                s.b = DVec3(spheres[p].sphere.r, 0.0, 0.0);
+                s.prim = p | SlotPrimitive::kSphere;
+            } else {
+                const SceneTriangle& t = triangles[p - sphere_count];
+                s.a = DVec3(t.v0), s.b = DVec3(t.v1), s.c = DVec3(t.v2);
+                const bool flat = !degenerate.empty() && degenerate[p - sphere_count];
+                s.prim = p | (flat ? SlotPrimitive::kDegenerate : 0u);
+            }
+            slots.push_back(s);
+        }
+    }
     degenerate_ = std::move(degenerate);
     face_normals_ = std::move(face_normals);
+    slots_ = std::move(slots);
     committed_ = true;
 }
 

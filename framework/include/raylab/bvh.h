@@ -126,8 +126,17 @@ class Bvh {
     /// true to stop (any hit). nodes_visited counts the interior nodes tested.
     template <class Visit>
     void traverse(const Ray& r, Visit&& visit, std::uint64_t& nodes_visited) const {
-        walk<true>(r, visit, nodes_visited);
+        walk<true, false>(r, visit, nodes_visited);
     }
+#if RAYLAB_AVX_NODES
+    /// traverse with each node's eight boxes in one AVX slab test instead of two SSE
+    /// ones (the same results): only from code compiled for AVX2 (the reference
+    /// engine's AVX2 versions, which inline it), on a processor that has it.
+    template <class Visit>
+    void traverse_avx(const Ray& r, Visit&& visit, std::uint64_t& nodes_visited) const {
+        walk<true, true>(r, visit, nodes_visited);
+    }
+#endif
     /// The same for an any-hit query, without sorting: of two hit children the first
     /// slot is visited first, of more the last slot (the query stops at any hit, and a
     /// shadow ray's nearest boxes hold the surface it leaves, which it cannot hit).
@@ -135,8 +144,16 @@ class Bvh {
     /// closest hits, which sorting lets skip what lies behind a hit, slower.
     template <class Visit>
     void traverse_any(const Ray& r, Visit&& visit, std::uint64_t& nodes_visited) const {
-        walk<false>(r, visit, nodes_visited);
+        walk<false, false>(r, visit, nodes_visited);
     }
+#if RAYLAB_AVX_NODES
+    /// traverse_any with traverse_avx's node test, under the same condition.
+    template <class Visit>
+    void traverse_any_avx(const Ray& r, Visit&& visit,
+                          std::uint64_t& nodes_visited) const {
+        walk<false, true>(r, visit, nodes_visited);
+    }
+#endif
 
     /// A packet of rays from one origin o whose direction components each keep one sign
     /// and are never zero: per axis, the range [inv_lo, inv_hi] of the rays' 1 / w
@@ -159,7 +176,7 @@ class Bvh {
                           std::uint64_t& nodes_visited) const;
 
   private:
-    template <bool Sorted, class Visit>
+    template <bool Sorted, bool Avx, class Visit>
     void walk(const Ray& r, Visit& visit, std::uint64_t& nodes_visited) const;
     // The ray, broadcast for the SSE slab test; near[a] names the box row the ray
     // enters by along axis a (lo for a positive direction, hi for a negative one)
@@ -184,6 +201,32 @@ class Bvh {
     }
     static int hit_children(const Node& n, const Ray4& r, float tmin, float tmax,
                             float t_enter[kWidth]);
+#if RAYLAB_AVX_NODES
+    // hit_children's SSE test on all eight boxes in one AVX register: the same
+    // operations, and maxps/minps's NaN rule (the second operand) holds for their AVX
+    // forms; _CMP_LE_OQ is cmpleps's <= (false for NaN). raylab-bench's rays through
+    // its 400,000-triangle mesh, two runs alternated: camera rays 4-6 % and shadow rays
+    // 5-7 % faster than with the two SSE tests in the same AVX2 version of the query
+    __attribute__((target("avx2"))) static int hit_children_avx(const Node& n,
+                                                                const Ray4& r, float tmin,
+                                                                float tmax,
+                                                                float t_enter[kWidth]) {
+        __m256 enter = _mm256_set1_ps(tmin), exit = _mm256_set1_ps(tmax);
+        for (int a = 0; a < 3; ++a) {
+            const __m256 o = _mm256_set_m128(r.o[a], r.o[a]);
+            const __m256 inv = _mm256_set_m128(r.inv_w[a], r.inv_w[a]);
+            const __m256 t_near = _mm256_mul_ps(
+                _mm256_sub_ps(_mm256_load_ps(n.box[2 * a + r.near[a]]), o), inv);
+            const __m256 t_far = _mm256_mul_ps(
+                _mm256_sub_ps(_mm256_load_ps(n.box[2 * a + 1 - r.near[a]]), o), inv);
+            enter = _mm256_max_ps(t_near, enter);
+            exit = _mm256_min_ps(t_far, exit);
+        }
+        _mm256_store_ps(t_enter, enter);
+        return _mm256_movemask_ps(_mm256_cmp_ps(
+            enter, _mm256_mul_ps(exit, _mm256_set1_ps(kSlabGrow)), _CMP_LE_OQ));
+    }
+#endif
     // The frustum, broadcast: per axis the origin and the range of 1 / w
     struct Frustum4 {
 #if RAYLAB_SSE2
@@ -248,7 +291,7 @@ inline int Bvh::hit_children(const Node& n, const Ray4& r, float tmin, float tma
 #endif
 }
 
-template <bool Sorted, class Visit>
+template <bool Sorted, bool Avx, class Visit>
 void Bvh::walk(const Ray& r, Visit& visit, std::uint64_t& nodes_visited) const {
     if (prims_.empty()) return;
     float tmax = r.tmax;
@@ -286,8 +329,14 @@ void Bvh::walk(const Ray& r, Visit& visit, std::uint64_t& nodes_visited) const {
         } else {
             const Node& node = nodes_[child];
             ++nodes_visited;
-            alignas(16) float t[kWidth];
-            int mask = hit_children(node, ray, r.tmin, tmax, t);
+            alignas(32) float t[kWidth];
+            int mask;
+#if RAYLAB_AVX_NODES
+            if constexpr (Avx)
+                mask = hit_children_avx(node, ray, r.tmin, tmax, t);
+            else
+#endif
+                mask = hit_children(node, ray, r.tmin, tmax, t);
             if (mask != 0) {
                 // One child hit (the commonest case): straight down, no stack
                 const int k0 = __builtin_ctz(static_cast<unsigned>(mask));

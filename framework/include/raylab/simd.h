@@ -11,3 +11,10 @@
 #else
 #define RAYLAB_SSE2 0
 #endif
+
+#if RAYLAB_SSE2 && defined(__x86_64__)
+#define RAYLAB_AVX_NODES 1
+#include <immintrin.h>
+#else
+#define RAYLAB_AVX_NODES 0
+#endif
