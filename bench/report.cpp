@@ -10,6 +10,8 @@
 #include <limits>
 #include <thread>
 
+#include "raylab/engine.h"
+
 namespace raylab::bench {
 
 std::string fmt(const char* format, ...) {
@@ -143,6 +145,10 @@ void print_machine(unsigned long long seed, int repeats) {
     std::printf("- load average at start: %.2f (others' work makes timings noisy)\n",
                 load_average());
     std::printf("- compiler: g++-compatible %s, build: %s\n", __VERSION__, build);
+    std::printf(
+        "- reference engine: its %s versions (environment variable "
+        "RAYLAB_NO_AVX2 set: the baseline ones)\n",
+        reference::geometry_engine()->versions);
     std::printf("- seed: %llu (rerun with --seed %llu for the same rays)\n", seed, seed);
     std::printf("- timings: median of %d repeats after one warm-up run\n\n", repeats);
     std::fflush(stdout);

@@ -6,7 +6,8 @@
 #   scripts/stress-matrix.sh [--quick]
 #
 # The matrix, which `scripts/dev.sh test` (and so CI) runs: 6 configurations, only
-# raylab-stress-tests and what it links built in each (2 minutes in all on 2 cores without
+# raylab-stress-tests and what it links built in each (and in clang++ -O2 the framework's
+# unit tests, raylab-framework-tests, as well) (2 minutes in all on 2 cores without
 # ccache, 2026-11-25; seconds with it):
 #   g++     -O0, -O2 -DRAYLAB_NO_SIMD, -O3 -march=native
 #   clang++ -O0, -O2, -O3 -march=native
@@ -54,10 +55,16 @@ for config in "${configs[@]}"; do
     dir="build-stress/${cxx}${flags// /}"
     start=$SECONDS
     echo "== stress suite: $cxx $flags ($dir)"
+    # clang++ -O2 builds and runs the framework's unit tests too: the rest of CI builds
+    # them with g++ only, and clang 14 refuses some C++17 that g++ takes
+    targets=(raylab-stress-tests)
+    if [[ "$cxx" == clang++ && "$flags" == "-O2" ]]; then
+        targets+=(raylab-framework-tests)
+    fi
     if ! cmake -S . -B "$dir" -G Ninja -DCMAKE_CXX_COMPILER="$cxx" \
         -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="$flags" "${launcher[@]}" \
         -DRAYLAB_WITH_GUI=OFF -DRAYLAB_WERROR=ON >"$dir.configure.log" 2>&1 ||
-        ! cmake --build "$dir" -j "$jobs" --target raylab-stress-tests \
+        ! cmake --build "$dir" -j "$jobs" --target "${targets[@]}" \
             >"$dir.build.log" 2>&1; then
         echo "stress-matrix: build failed for $cxx $flags (see $dir.*.log)" >&2
         failed+=("$cxx $flags (build)")
@@ -66,6 +73,12 @@ for config in "${configs[@]}"; do
     built=$SECONDS
     if ! "$dir/tests/stress/raylab-stress-tests" --no-intro; then
         failed+=("$cxx $flags")
+    fi
+    if [[ " ${targets[*]} " == *" raylab-framework-tests "* ]]; then
+        echo "== $cxx $flags, the framework's unit tests"
+        if ! "$dir/tests/framework/raylab-framework-tests" --no-intro --minimal; then
+            failed+=("$cxx $flags framework tests")
+        fi
     fi
     # A build for the baseline carries the engine's AVX2 versions too, which this
     # machine's processor may choose: run again on the baseline ones

@@ -149,7 +149,8 @@ const GeometryEngine* geometry_engine() {
                                        &intersect_triangle,
                                        &engine_kernels::closest_hit,
                                        &engine_kernels::any_hit_versions,
-                                       &engine_kernels::closest_hit_packet};
+                                       &engine_kernels::closest_hit_packet,
+                                       engine_kernels::engine_versions()};
     return &engine;
 }
 

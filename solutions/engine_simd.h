@@ -71,6 +71,14 @@ inline bool engine_avx2() {
     return avx2;
 }
 #endif
+// The versions that run, as GeometryEngine::versions names them
+inline const char* engine_versions() {
+#if RAYLAB_ENGINE_AVX2
+    return engine_avx2() ? "avx2" : "baseline";
+#else
+    return "native";
+#endif
+}
 // The build's own target has AVX2 (one version of each query)
 #if defined(__AVX2__) && RAYLAB_AVX_NODES
 constexpr bool kAvxTarget = true;

@@ -65,7 +65,9 @@ TEST_SUITE("engine") {
         // keeps the normals, and computes it where it does not: both are compared
         bool kept = false, computed = false;
         for (const auto& [name, scene] : test_scenes()) {
-            INFO("scene " << name);
+            // INFO captures in a lambda, which clang 14 refuses for a structured binding
+            const std::string& scene_name = name;
+            INFO("scene " << scene_name);
             (scene.has_face_normals() ? kept : computed) = true;
             const Aabb box = scene.bounds();
             const Vec3 centre = box.centre(), size = box.hi - box.lo;
@@ -293,7 +295,9 @@ TEST_SUITE("engine") {
         settings.width = 96;
         settings.height = 72;
         for (const auto& [name, scene] : test_scenes()) {
-            INFO("scene " << name);
+            // INFO captures in a lambda, which clang 14 refuses for a structured binding
+            const std::string& scene_name = name;
+            INFO("scene " << scene_name);
             Image a, b;
             const FrameStats sa = render(scene, scene.view, settings, fast, a);
             const FrameStats sb = render(scene, scene.view, settings, slow, b);

@@ -212,7 +212,7 @@ TEST_SUITE("render") {
         for (auto [w, h] : {std::pair{0, 10}, {10, -1}, {100000, 10}, {16384, 16384}}) {
             settings.width = w;
             settings.height = h;
-            INFO(w << "x" << h);
+            INFO(settings.width << "x" << settings.height);
             CHECK_THROWS_WITH_AS(
                 render(scene, scene.view, settings, reference_modules(), image),
                 doctest::Contains("resolution"), Error);

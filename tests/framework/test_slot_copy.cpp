@@ -5,8 +5,11 @@
 // flip, flatten and add primitives.
 #include <doctest/doctest.h>
 
+#include <cstdlib>
 #include <cstring>
+#include <string>
 
+#include "raylab/engine.h"
 #include "raylab/error.h"
 #include "test_engine_scenes.h"
 #include "test_helpers.h"
@@ -120,5 +123,21 @@ TEST_SUITE("slot copy") {
         scene.commit();
         check_slots(scene);
         compare_paths(scene, moved, 20, 1500);
+    }
+}
+
+TEST_SUITE("engine versions") {
+    // The engine's versions as solutions/engine_simd.h chooses them: on x86-64 built for
+    // the baseline, AVX2 where the processor has it unless RAYLAB_NO_AVX2 is set (the
+    // ctest run framework/engine-baseline-versions sets it), else the build's own
+    TEST_CASE("the engine names the versions it runs") {
+        const std::string versions = reference::geometry_engine()->versions;
+#if defined(__x86_64__) && !defined(__AVX2__) && !defined(RAYLAB_NO_SIMD)
+        const bool avx2 =
+            __builtin_cpu_supports("avx2") && std::getenv("RAYLAB_NO_AVX2") == nullptr;
+        CHECK(versions == (avx2 ? "avx2" : "baseline"));
+#else
+        CHECK(versions == "native");
+#endif
     }
 }

@@ -111,6 +111,9 @@ class Scene {
     /// BVH. Call after every geometry change; camera and light changes need no rebuild.
     /// Throws raylab::Error naming the first bad element; the scene then keeps its last
     /// good BVH, and its queries call the modules (no engine) until a commit() succeeds.
+    /// The reference's engine reads what commit() keeps (normals, the slot copy): after
+    /// an edit without a commit() it would see the last committed geometry, the module
+    /// path the new one.
     void commit();
 
     /// Bounds of spheres and triangles (planes excluded); empty box when there are none.
