@@ -146,8 +146,8 @@ void print_machine(unsigned long long seed, int repeats) {
                 load_average());
     std::printf("- compiler: g++-compatible %s, build: %s\n", __VERSION__, build);
     std::printf(
-        "- reference engine: its %s versions (environment variable "
-        "RAYLAB_NO_AVX2 set: the baseline ones)\n",
+        "- reference engine: the %s versions of its queries (chosen at run time; "
+        "RAYLAB_NO_AVX2=1 forces the baseline ones)\n",
         reference::geometry_engine()->versions);
     std::printf("- seed: %llu (rerun with --seed %llu for the same rays)\n", seed, seed);
     std::printf("- timings: median of %d repeats after one warm-up run\n\n", repeats);
