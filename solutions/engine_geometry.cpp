@@ -66,14 +66,7 @@ RAYLAB_INLINE void closest_hit_from(const Scene& scene, const Source& source,
         }
         return false;
     };
-#if RAYLAB_AVX_NODES
-    if constexpr (Avx) {
-        scene.bvh().traverse_avx(ray, visit, counters.bvh_nodes);
-    } else
-#endif
-    {
-        scene.bvh().traverse(ray, visit, counters.bvh_nodes);
-    }
+    scene.bvh().traverse<Avx>(ray, visit, counters.bvh_nodes);
     if (best.kind == PrimRef::Kind::none && !in_bvh) return;
     finish_hit(scene, Primitives(scene), r, best_t, in_bvh,
                in_bvh ? source.prim(best_slot) : 0, best_extra, hit, best);
@@ -106,14 +99,7 @@ RAYLAB_INLINE bool any_hit_from(const Scene& scene, const Source& source, const 
         }
         return hit;
     };
-#if RAYLAB_AVX_NODES
-    if constexpr (Avx) {
-        scene.bvh().traverse_any_avx(r, visit, counters.bvh_nodes);
-    } else
-#endif
-    {
-        scene.bvh().traverse_any(r, visit, counters.bvh_nodes);
-    }
+    scene.bvh().traverse_any<Avx>(r, visit, counters.bvh_nodes);
     return hit;
 }
 

@@ -37,10 +37,11 @@
 // AVX2 where the processor has it (Avx = true) and for the baseline otherwise (false).
 // flatten inlines every call of a version, the BVH's walk and the leaf visit too, so all
 // of the query is compiled for the version's target; Avx lets a query use instructions
-// that only the AVX2 version may (Bvh::traverse_avx's node test). A build for a target
-// with AVX2 (-march=native here) has one version, with Avx = true. The environment
-// variable RAYLAB_NO_AVX2 (any value) makes the processor's choice the baseline, so that
-// tests can run both versions on one machine (scripts/stress-matrix.sh does).
+// that only the AVX2 version may (the AVX node test of Bvh::traverse<true>). A build for
+// a target with AVX2 (-march=native here) has one version, with Avx = true. The
+// environment variable RAYLAB_NO_AVX2 (any value) makes the processor's choice the
+// baseline, so that tests can run both versions on one machine (scripts/stress-matrix.sh
+// does).
 #if RAYLAB_ENGINE_AVX2
 #define RAYLAB_ENGINE_VERSIONS(QUERY, RESULT, NAME, PARAMS, ARGS)        \
     __attribute__((flatten)) RESULT NAME##_baseline PARAMS {             \

@@ -1,6 +1,7 @@
 // Scenes of many mixed primitives near a size limit of what commit() keeps for the
-// reference's engine (the face normals, the slot copy), and the comparison of the engine
-// with the module path on them: test_face_normals.cpp and test_slot_copy.cpp.
+// reference's engine (the face normals, the slot copy), the comparison of the engine
+// with the module path on them, and the check of the slot copy: test_face_normals.cpp,
+// test_slot_copy.cpp and test_slot_copy_adversarial.cpp.
 #pragma once
 
 #include <cmath>
@@ -76,6 +77,36 @@ inline void compare_paths(const Scene& scene, const std::vector<Vec3>& targets,
     CHECK(hits > rays / 2);
     CHECK(cf.intersection_tests == cs.intersection_tests);
     CHECK(cf.bvh_nodes == cs.bvh_nodes);
+}
+
+// Every slot holds, to the bit, the primitive the BVH puts there
+inline void check_slots(const Scene& scene) {
+    const Scene::SlotPrimitive* slots = scene.slot_primitives();
+    REQUIRE(slots != nullptr);
+    const std::vector<std::uint32_t>& order = scene.bvh().prims();
+    const std::uint32_t spheres = static_cast<std::uint32_t>(scene.spheres.size());
+    REQUIRE(order.size() == scene.spheres.size() + scene.triangles.size());
+    for (size_t k = 0; k < order.size(); ++k) {
+        INFO("slot " << k);
+        const std::uint32_t p = order[k];
+        const Scene::SlotPrimitive& s = slots[k];
+        CHECK((s.prim & Scene::SlotPrimitive::kIndexMask) == p);
+        if (p < spheres) {
+            const Sphere& sphere = scene.spheres[p].sphere;
+            CHECK((s.prim & Scene::SlotPrimitive::kSphere) != 0);
+            CHECK((s.prim & Scene::SlotPrimitive::kDegenerate) == 0);
+            CHECK(Vec3(s.a) == sphere.c);
+            CHECK(float(s.b.x) == sphere.r);
+            continue;
+        }
+        const SceneTriangle& t = scene.triangles[p - spheres];
+        CHECK((s.prim & Scene::SlotPrimitive::kSphere) == 0);
+        CHECK(((s.prim & Scene::SlotPrimitive::kDegenerate) != 0) ==
+              scene.degenerate(p - spheres));
+        CHECK(Vec3(s.a) == t.v0);
+        CHECK(Vec3(s.b) == t.v1);
+        CHECK(Vec3(s.c) == t.v2);
+    }
 }
 
 }  // namespace raylab

@@ -16,40 +16,7 @@
 
 using namespace raylab;
 
-namespace {
-
 using Slot = Scene::SlotPrimitive;
-
-// Every slot holds, to the bit, the primitive the BVH puts there
-void check_slots(const Scene& scene) {
-    const Slot* slots = scene.slot_primitives();
-    REQUIRE(slots != nullptr);
-    const std::vector<std::uint32_t>& order = scene.bvh().prims();
-    const std::uint32_t spheres = static_cast<std::uint32_t>(scene.spheres.size());
-    REQUIRE(order.size() == scene.spheres.size() + scene.triangles.size());
-    for (size_t k = 0; k < order.size(); ++k) {
-        INFO("slot " << k);
-        const std::uint32_t p = order[k];
-        const Slot& s = slots[k];
-        CHECK((s.prim & Slot::kIndexMask) == p);
-        if (p < spheres) {
-            const Sphere& sphere = scene.spheres[p].sphere;
-            CHECK((s.prim & Slot::kSphere) != 0);
-            CHECK((s.prim & Slot::kDegenerate) == 0);
-            CHECK(Vec3(s.a) == sphere.c);
-            CHECK(float(s.b.x) == sphere.r);
-            continue;
-        }
-        const SceneTriangle& t = scene.triangles[p - spheres];
-        CHECK((s.prim & Slot::kSphere) == 0);
-        CHECK(((s.prim & Slot::kDegenerate) != 0) == scene.degenerate(p - spheres));
-        CHECK(Vec3(s.a) == t.v0);
-        CHECK(Vec3(s.b) == t.v1);
-        CHECK(Vec3(s.c) == t.v2);
-    }
-}
-
-}  // namespace
 
 TEST_SUITE("slot copy") {
     TEST_CASE("the copy holds each slot's primitive, flags included") {

@@ -1,5 +1,5 @@
 // Adversarial cases for the slot copy (Scene::slot_primitives) and the AVX node test
-// (Bvh::traverse_avx), written by a reviewer who did not write them, beyond what
+// (Bvh::traverse<true>), written by a reviewer who did not write them, beyond what
 // test_slot_copy.cpp reaches: the AVX walk against the SSE walk leaf by leaf, rays on box
 // planes with zero, denormal and infinite components, lattices traced through shared
 // vertices and edges, spheres-only and triangles-only scenes at the limit, re-commits and
@@ -80,33 +80,6 @@ void check_ray(const Scene& scene, const Ray& r) {
     CHECK(scene.any_hit(fast, r, af) == scene.any_hit(slow, r, as));
     CHECK(af.intersection_tests == as.intersection_tests);
     CHECK(af.bvh_nodes == as.bvh_nodes);
-}
-
-// Every slot holds, to the bit, the primitive the BVH puts there (test_slot_copy.cpp's
-// check, repeated for the scenes here)
-void check_slots(const Scene& scene) {
-    const Slot* slots = scene.slot_primitives();
-    REQUIRE(slots != nullptr);
-    const std::vector<std::uint32_t>& order = scene.bvh().prims();
-    const std::uint32_t spheres = static_cast<std::uint32_t>(scene.spheres.size());
-    REQUIRE(order.size() == scene.spheres.size() + scene.triangles.size());
-    for (size_t k = 0; k < order.size(); ++k) {
-        const std::uint32_t p = order[k];
-        const Slot& s = slots[k];
-        REQUIRE((s.prim & Slot::kIndexMask) == p);
-        if (p < spheres) {
-            REQUIRE((s.prim & Slot::kSphere) != 0);
-            REQUIRE(Vec3(s.a) == scene.spheres[p].sphere.c);
-            REQUIRE(float(s.b.x) == scene.spheres[p].sphere.r);
-        } else {
-            const SceneTriangle& t = scene.triangles[p - spheres];
-            REQUIRE((s.prim & Slot::kSphere) == 0);
-            REQUIRE(((s.prim & Slot::kDegenerate) != 0) == scene.degenerate(p - spheres));
-            REQUIRE(Vec3(s.a) == t.v0);
-            REQUIRE(Vec3(s.b) == t.v1);
-            REQUIRE(Vec3(s.c) == t.v2);
-        }
-    }
 }
 
 // Unit cubes of 12 triangles each on the integer lattice, every other cell of an
@@ -243,9 +216,9 @@ __attribute__((target("avx2"), flatten)) Walk avx_walk(const Bvh& bvh,
             return ++visits == 3;
         };
         if (sorted)
-            bvh.traverse_avx(r, visit, w.nodes);
+            bvh.traverse<true>(r, visit, w.nodes);
         else
-            bvh.traverse_any_avx(r, visit, w.nodes);
+            bvh.traverse_any<true>(r, visit, w.nodes);
         w.leaves.push_back(~0u);
     }
     return w;
@@ -316,7 +289,7 @@ void check_rays(const Scene& scene, const std::vector<Ray>& rays) {
 TEST_SUITE("slot copy") {
     // Not covered before: the AVX node test against the SSE one directly (the engine's
     // tests compare whole queries, which reach only the version the processor chooses)
-    TEST_CASE("review: traverse_avx visits exactly what traverse visits") {
+    TEST_CASE("review: the AVX walk visits exactly what the SSE walk visits") {
 #if RAYLAB_AVX_NODES
         if (!__builtin_cpu_supports("avx2")) {
             MESSAGE("no AVX2 here: nothing to compare");

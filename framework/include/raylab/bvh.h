@@ -124,36 +124,23 @@ class Bvh {
     /// visit(first, count, tmax) is called with the leaf's slots [first, first + count)
     /// and a reference to the current tmax, which it may shrink (closest hit); it returns
     /// true to stop (any hit). nodes_visited counts the interior nodes tested.
-    template <class Visit>
+    /// Avx: each node's eight boxes in one AVX slab test instead of two SSE ones (the
+    /// same results); only from code compiled for AVX2 (the reference engine's AVX2
+    /// versions, which inline the walk), on a processor that has it. Without SSE2 or
+    /// off x86-64 (RAYLAB_AVX_NODES 0) it is ignored.
+    template <bool Avx = false, class Visit>
     void traverse(const Ray& r, Visit&& visit, std::uint64_t& nodes_visited) const {
-        walk<true, false>(r, visit, nodes_visited);
+        walk<true, Avx>(r, visit, nodes_visited);
     }
-#if RAYLAB_AVX_NODES
-    /// traverse with each node's eight boxes in one AVX slab test instead of two SSE
-    /// ones (the same results): only from code compiled for AVX2 (the reference
-    /// engine's AVX2 versions, which inline it), on a processor that has it.
-    template <class Visit>
-    void traverse_avx(const Ray& r, Visit&& visit, std::uint64_t& nodes_visited) const {
-        walk<true, true>(r, visit, nodes_visited);
-    }
-#endif
     /// The same for an any-hit query, without sorting: of two hit children the first
     /// slot is visited first, of more the last slot (the query stops at any hit, and a
     /// shadow ray's nearest boxes hold the surface it leaves, which it cannot hit).
     /// Measured on raylab-bench's shadow rays: faster than sorting on the large mesh; for
     /// closest hits, which sorting lets skip what lies behind a hit, slower.
-    template <class Visit>
+    template <bool Avx = false, class Visit>
     void traverse_any(const Ray& r, Visit&& visit, std::uint64_t& nodes_visited) const {
-        walk<false, false>(r, visit, nodes_visited);
+        walk<false, Avx>(r, visit, nodes_visited);
     }
-#if RAYLAB_AVX_NODES
-    /// traverse_any with traverse_avx's node test, under the same condition.
-    template <class Visit>
-    void traverse_any_avx(const Ray& r, Visit&& visit,
-                          std::uint64_t& nodes_visited) const {
-        walk<false, true>(r, visit, nodes_visited);
-    }
-#endif
 
     /// A packet of rays from one origin o whose direction components each keep one sign
     /// and are never zero: per axis, the range [inv_lo, inv_hi] of the rays' 1 / w
