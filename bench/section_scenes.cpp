@@ -140,43 +140,56 @@ void bench_build(const std::string& name, Scene& scene, const BenchOptions& opt,
                       peer[1] ? fmt("%.2f", 1e3 * build_s[1]) : "-"});
 }
 
-// The set traced by two threads, each taking every other run of 16 rays, raylab's and
-// Embree's passes interleaved: one row of the two-thread table Issue 9's target for
-// raylab's speed over Embree's: the Cornell box >= 1, meshes of 80k to 1M triangles >=
-// 0.6
+// Issue 9's target for raylab's speed over Embree's: the Cornell box >= 1, meshes of
+// 80k to 1M triangles >= 0.6
 double embree_target(const std::string& scene_name) {
     return scene_name == "cornell" ? 1.0 : 0.6;
 }
 
+// The rays dealt to `threads` threads (1 or 2) in runs of 16 in turn, a packet each
+// (until 2026-11-26 each took a contiguous half: the halves of an image differ in cost,
+// so one thread waited on the other, which measured the split more than the tracer)
+std::vector<std::vector<Ray>> deal_runs(const std::vector<Ray>& rays, int threads) {
+    std::vector<std::vector<Ray>> part(static_cast<size_t>(threads));
+    for (size_t first = 0; first < rays.size(); first += 16) {
+        std::vector<Ray>& to = part[(first / 16) % part.size()];
+        to.insert(to.end(), rays.begin() + long(first),
+                  rays.begin() + long(std::min(rays.size(), first + 16)));
+    }
+    return part;
+}
+
+// work(k) for each thread k of `threads` (1 or 2), the second on a thread of its own
+void on_threads(int threads, const std::function<void(int)>& work) {
+    if (threads == 1) return work(0);
+    std::thread helper(work, 1);
+    work(0);
+    helper.join();
+}
+
+// One cache line per thread's counters: written per ray, they must not share one
+struct alignas(64) ThreadCounters {
+    TraceCounters c;
+};
+
+// The set traced by two threads, each taking every other run of 16 rays, raylab's and
+// Embree's passes interleaved: one row of the two-thread table
 void two_thread_row(const std::string& name, const Scene& scene,
                     const ModuleTable& modules, const PeerScene* peer, const QuerySet& q,
                     int repeats, Table& table) {
-    // The rays dealt to the threads in runs of 16 in turn (until 2026-11-26 each took a
-    // contiguous half: the halves of an image differ in cost, so one thread waited on
-    // the other, which measured the split more than the tracer)
-    QuerySet parts[2] = {{q.name, q.closest, {}}, {q.name, q.closest, {}}};
-    for (size_t first = 0; first < q.rays.size(); first += 16) {
-        std::vector<Ray>& to = parts[(first / 16) % 2].rays;
-        to.insert(to.end(), q.rays.begin() + long(first),
-                  q.rays.begin() + long(std::min(q.rays.size(), first + 16)));
-    }
+    const std::vector<std::vector<Ray>> rays = deal_runs(q.rays, 2);
+    const QuerySet parts[2] = {{q.name, q.closest, rays[0]},
+                               {q.name, q.closest, rays[1]}};
     Traced out[2];
-    // One cache line per thread's counters: written per ray, they must not share one
-    struct alignas(64) Counters {
-        TraceCounters c;
-    } counters[2];
-    const auto both = [](const std::function<void(int)>& part) {
-        std::thread helper(part, 1);
-        part(0);
-        helper.join();
-    };
+    ThreadCounters counters[2];
     std::vector<std::function<void()>> works{[&] {
-        both(
-            [&](int k) { raylab_pass(scene, modules, parts[k], out[k], counters[k].c); });
+        on_threads(2, [&](int k) {
+            raylab_pass(scene, modules, parts[k], out[k], counters[k].c);
+        });
     }};
     if (peer)
         works.push_back(
-            [&] { both([&](int k) { peer_pass(*peer, parts[k], out[k]); }); });
+            [&] { on_threads(2, [&](int k) { peer_pass(*peer, parts[k], out[k]); }); });
     const std::vector<double> s = interleaved_median_seconds(repeats, works);
     const size_t n = q.rays.size();
     table.row({name, q.name, q.closest ? "closest" : "any", fmt("%zu", n),
@@ -231,29 +244,16 @@ void packet_rows(const std::string& name, const Scene& scene, const ModuleTable&
     for (size_t k = 0; k < n; ++k)
         differ += std::memcmp(&traced.t[k], &packed[k], sizeof(float)) != 0;
     for (const int threads : {1, 2}) {
-        // The blocks dealt to the threads in turn, a packet each, the same for all four:
-        // the image's halves differ in cost, and halves made one thread wait on the other
-        std::vector<Ray> part[2];
-        for (size_t first = 0; first < n; first += 16)
-            part[(first / 16) % size_t(threads)].insert(
-                part[(first / 16) % size_t(threads)].end(), rays.begin() + long(first),
-                rays.begin() + long(std::min(n, first + 16)));
+        // The blocks dealt to the threads in turn, the same for all four
+        const std::vector<std::vector<Ray>> part = deal_runs(rays, threads);
         std::vector<float> out[2][4];
         for (int k = 0; k < threads; ++k)
             for (std::vector<float>& o : out[k])
-                o.resize(part[k].size());
-        const auto on_threads = [&](const std::function<void(int)>& work) {
-            if (threads == 1) return work(0);
-            std::thread helper(work, 1);
-            work(0);
-            helper.join();
-        };
-        struct alignas(64) Counters {
-            TraceCounters c;
-        } counters[2];
+                o.resize(part[size_t(k)].size());
+        ThreadCounters counters[2];
         std::vector<std::function<void()>> works{
             [&] {
-                on_threads([&](int k) {
+                on_threads(threads, [&](int k) {
                     for (size_t i = 0; i < part[k].size(); ++i) {
                         const std::optional<Hit> hit =
                             scene.closest_hit(modules, part[k][i], counters[k].c);
@@ -262,17 +262,19 @@ void packet_rows(const std::string& name, const Scene& scene, const ModuleTable&
                 });
             },
             [&] {
-                on_threads([&](int k) {
+                on_threads(threads, [&](int k) {
                     packet_pass(scene, modules, part[k].data(), part[k].size(),
                                 out[k][1].data(), counters[k].c);
                 });
             }};
         if (peer) {
             works.push_back([&] {
-                on_threads([&](int k) { peer->closest_hit(part[k], out[k][2]); });
+                on_threads(threads,
+                           [&](int k) { peer->closest_hit(part[k], out[k][2]); });
             });
             works.push_back([&] {
-                on_threads([&](int k) { peer->closest_hit16(part[k], out[k][3]); });
+                on_threads(threads,
+                           [&](int k) { peer->closest_hit16(part[k], out[k][3]); });
             });
         }
         const std::vector<double> s = interleaved_median_seconds(opt.repeats, works);

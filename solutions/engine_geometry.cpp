@@ -124,18 +124,20 @@ RAYLAB_ENGINE_VERSIONS(any_hit_query, bool, any_hit_versions,
 
 void closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, Hit& hit,
                  PrimRef& best) {
-    closest_hit_versions(scene, r, counters, hit, best);
+    static const auto chosen = closest_hit_versions_chosen();
+    chosen(scene, r, counters, hit, best);
 }
 
 }  // namespace engine_kernels
 
 const GeometryEngine* geometry_engine() {
+    // The queries' versions chosen once, here (engine_simd.h)
     static const GeometryEngine engine{&intersect_plane,
                                        &intersect_sphere,
                                        &intersect_triangle,
-                                       &engine_kernels::closest_hit,
-                                       &engine_kernels::any_hit_versions,
-                                       &engine_kernels::closest_hit_packet,
+                                       engine_kernels::closest_hit_versions_chosen(),
+                                       engine_kernels::any_hit_versions_chosen(),
+                                       engine_kernels::chosen_packet_query(),
                                        engine_kernels::engine_versions()};
     return &engine;
 }

@@ -268,11 +268,12 @@ inline void finish_hit(const Scene& scene, const Primitives& prims, const Ray& r
     best = {PrimRef::Kind::triangle, k, refined};
 }
 
-// The engine's queries (raylab/engine.h): closest_hit and any_hit in engine_geometry.cpp,
-// closest_hit_packet in engine_packet.cpp
+// The engine's queries (raylab/engine.h), each the version chosen for this processor
+// (engine_simd.h): closest_hit and any_hit in engine_geometry.cpp, the packet query in
+// engine_packet.cpp. closest_hit is what the packet query calls for a ray it cannot
+// take or must trace again alone
 void closest_hit(const Scene& scene, const Ray& r, TraceCounters& counters, Hit& hit,
                  PrimRef& best);
-void closest_hit_packet(const Scene& scene, const Ray* rays, int n,
-                        TraceCounters& counters, Hit* hits, PrimRef* prims);
+decltype(GeometryEngine::closest_hit_packet) chosen_packet_query();
 
 }  // namespace raylab::reference::engine_kernels

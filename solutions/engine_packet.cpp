@@ -270,9 +270,8 @@ RAYLAB_ENGINE_VERSIONS(packet_query, void, packet_versions,
 
 }  // namespace
 
-void closest_hit_packet(const Scene& scene, const Ray* rays, int n,
-                        TraceCounters& counters, Hit* hits, PrimRef* prims) {
-    packet_versions(scene, rays, n, counters, hits, prims);
+decltype(GeometryEngine::closest_hit_packet) chosen_packet_query() {
+    return packet_versions_chosen();
 }
 
 }  // namespace raylab::reference::engine_kernels

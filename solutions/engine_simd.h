@@ -33,32 +33,36 @@
 #endif
 #define RAYLAB_INLINE inline __attribute__((always_inline))
 
-// NAME(PARAMS) runs QUERY<Avx>(ARGS), an always-inlined function template, compiled for
-// AVX2 where the processor has it (Avx = true) and for the baseline otherwise (false).
-// flatten inlines every call of a version, the BVH's walk and the leaf visit too, so all
-// of the query is compiled for the version's target; Avx lets a query use instructions
-// that only the AVX2 version may (the AVX node test of Bvh::traverse<true>). A build for
-// a target with AVX2 (-march=native here) has one version, with Avx = true. The
-// environment variable RAYLAB_NO_AVX2 (any value) makes the processor's choice the
-// baseline, so that tests can run both versions on one machine (scripts/stress-matrix.sh
-// does).
+// RAYLAB_ENGINE_VERSIONS compiles QUERY<Avx>(ARGS), an always-inlined function
+// template, once for AVX2 (Avx = true) and once for the baseline (false), and defines
+// NAME_chosen(), which returns the version for this processor: AVX2 where it has it. The
+// engine stores the chosen versions in its GeometryEngine when it is first asked for, so
+// a query pays no choice per call. flatten inlines every call of a version, the BVH's
+// walk and the leaf visit too, so all of the query is compiled for the version's target;
+// Avx lets a query use instructions that only the AVX2 version may (the AVX node test of
+// Bvh::traverse<true>). A build for a target with AVX2 (-march=native here) has one
+// version, with Avx = true. The environment variable RAYLAB_NO_AVX2 (any value) makes the
+// choice the baseline, so that tests can run both versions on one machine
+// (scripts/stress-matrix.sh does).
 #if RAYLAB_ENGINE_AVX2
-#define RAYLAB_ENGINE_VERSIONS(QUERY, RESULT, NAME, PARAMS, ARGS)        \
-    __attribute__((flatten)) RESULT NAME##_baseline PARAMS {             \
-        return QUERY<false> ARGS;                                        \
-    }                                                                    \
-    __attribute__((target("avx2"), flatten)) RESULT NAME##_avx2 PARAMS { \
-        return QUERY<true> ARGS;                                         \
-    }                                                                    \
-    RESULT NAME PARAMS {                                                 \
-        return ::raylab::reference::engine_kernels::engine_avx2()        \
-                   ? NAME##_avx2 ARGS                                    \
-                   : NAME##_baseline ARGS;                               \
+#define RAYLAB_ENGINE_VERSIONS(QUERY, RESULT, NAME, PARAMS, ARGS)                     \
+    __attribute__((flatten)) RESULT NAME##_baseline PARAMS {                          \
+        return QUERY<false> ARGS;                                                     \
+    }                                                                                 \
+    __attribute__((target("avx2"), flatten)) RESULT NAME##_avx2 PARAMS {              \
+        return QUERY<true> ARGS;                                                      \
+    }                                                                                 \
+    auto NAME##_chosen() {                                                            \
+        return ::raylab::reference::engine_kernels::engine_avx2() ? &NAME##_avx2      \
+                                                                  : &NAME##_baseline; \
     }
 #else
 #define RAYLAB_ENGINE_VERSIONS(QUERY, RESULT, NAME, PARAMS, ARGS)           \
     __attribute__((flatten)) RESULT NAME PARAMS {                           \
         return QUERY<::raylab::reference::engine_kernels::kAvxTarget> ARGS; \
+    }                                                                       \
+    auto NAME##_chosen() {                                                  \
+        return &NAME;                                                       \
     }
 #endif
 

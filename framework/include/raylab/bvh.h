@@ -225,6 +225,11 @@ class Bvh {
     };
     static int frustum_children(const Node& n, const Frustum4& f, float tmin, float tmax,
                                 float t_enter[kWidth]);
+    // The walks' stacks of waiting children: at most kWidth - 1 waiting per level of the
+    // binary tree's 72 (a node is at least one binary level below its parent). The two
+    // walks keep their stack code apart: the single-ray walk with the push and pop as
+    // shared helpers measured 3-4 ns slower per Cornell box camera ray (51 against 54-55)
+    static constexpr int kStackSize = (kWidth - 1) * 72 + 8;
 
     std::vector<Node> nodes_;
     std::vector<std::uint32_t> prims_;
@@ -301,13 +306,12 @@ void Bvh::walk(const Ray& r, Visit& visit, std::uint64_t& nodes_visited) const {
         ray.near[a] = std::signbit(inv_w) ? 1 : 0;
     }
     // The farther children wait on the stack with their entry distance, skipped if a hit
-    // has come closer since. Depth: at most kWidth - 1 waiting per level of the binary
-    // tree's 72 (a node is at least one binary level below its parent)
+    // has come closer since
     struct Entry {
         std::uint32_t child;
         float t_enter;
     };
-    Entry stack[(kWidth - 1) * 72 + 8];
+    Entry stack[kStackSize];
     int top = 0;
     std::uint32_t child = root_;
     for (;;) {
@@ -450,7 +454,7 @@ void Bvh::traverse_frustum(const Frustum& fr, float tmax, Visit&& visit,
         float t_enter;
         std::uint32_t box;
     };
-    Entry stack[(kWidth - 1) * 72 + 8];
+    Entry stack[kStackSize];
     int top = 0;
     std::uint32_t child = root_, box = 0;
     for (;;) {
