@@ -84,6 +84,68 @@ Scene displaced_sphere(int triangles) {
     return scene;
 }
 
+Scene terrain(int triangles) {
+    // 2 n^2 triangles over [-1, 1]^2
+    const int n = std::max(2, static_cast<int>(std::lround(std::sqrt(triangles / 2.0))));
+    const auto height = [](double x, double z) {
+        return 0.15 * std::sin(3.1 * x + 1.3) * std::cos(2.7 * z) +
+               0.06 * std::sin(9.3 * x - 7.1 * z) + 0.02 * std::cos(23.0 * x + 19.0 * z) +
+               0.008 * std::sin(61.0 * x + 0.5) * std::sin(57.0 * z);
+    };
+    std::vector<Vec3> grid(static_cast<size_t>(n + 1) * (n + 1));
+    const auto at = [&](int i, int k) -> Vec3& {
+        return grid[static_cast<size_t>(k) * (n + 1) + static_cast<size_t>(i)];
+    };
+    for (int k = 0; k <= n; ++k) {
+        for (int i = 0; i <= n; ++i) {
+            const double x = -1.0 + 2.0 * i / n, z = -1.0 + 2.0 * k / n;
+            at(i, k) = Vec3(DVec3(x, height(x, z), z));
+        }
+    }
+    Scene scene;
+    scene.name = "terrain";
+    scene.materials.push_back(Material{"grass", Vec3(0.35f, 0.55f, 0.25f), Vec3(0.0f)});
+    scene.triangles.reserve(static_cast<size_t>(2 * n * n));
+    for (int k = 0; k < n; ++k) {
+        for (int i = 0; i < n; ++i) {
+            // Counter-clockwise seen from above (+y)
+            SceneTriangle t;
+            t.v0 = at(i, k), t.v1 = at(i, k + 1), t.v2 = at(i + 1, k + 1);
+            scene.triangles.push_back(t);
+            t.v1 = at(i + 1, k + 1), t.v2 = at(i + 1, k);
+            scene.triangles.push_back(t);
+        }
+    }
+    scene.view = View{Vec3(0.0f, 0.6f, 2.0f), Vec3(0.0f, 0.0f, -0.2f),
+                      Vec3(0.0f, 1.0f, 0.0f), 50.0f};
+    scene.lights.push_back(PointLight{Vec3(1.5f, 3.0f, 1.0f), Vec3(60.0f)});
+    scene.commit();
+    return scene;
+}
+
+Scene random_soup(int triangles, Rng& rng) {
+    // Vertices up to 20 / sqrt(n) from the centre: the soup's area, n times a mean of
+    // 0.243 size^2 (numerically), makes a line of length 2 through the cube of volume 8
+    // cross n A L / (2 V), about 12 triangles, whatever n
+    const double size = 20.0 / std::sqrt(static_cast<double>(std::max(triangles, 1)));
+    Scene scene;
+    scene.name = "random soup";
+    scene.materials.push_back(Material{"confetti", Vec3(0.8f, 0.5f, 0.3f), Vec3(0.0f)});
+    scene.triangles.reserve(static_cast<size_t>(triangles));
+    for (int k = 0; k < triangles; ++k) {
+        const DVec3 centre = rng.in_cube(1.0);
+        SceneTriangle t;
+        Vec3* v[3] = {&t.v0, &t.v1, &t.v2};
+        for (Vec3* p : v)
+            *p = Vec3(centre + size * rng.uniform(0.2, 1.0) * rng.unit_vector());
+        scene.triangles.push_back(t);
+    }
+    scene.view = View{Vec3(0.6f, 0.9f, 4.2f), Vec3(0.0f), Vec3(0.0f, 1.0f, 0.0f), 45.0f};
+    scene.lights.push_back(PointLight{Vec3(3.0f, 4.0f, 3.0f), Vec3(40.0f)});
+    scene.commit();
+    return scene;
+}
+
 std::vector<Ray> camera_rays(const Scene& scene, const ModuleTable& modules, int width,
                              int height) {
     const PinholeCamera camera = make_camera(modules, scene.view);

@@ -13,6 +13,20 @@ namespace raylab::bench {
 /// vertices are computed once, so the mesh is watertight bit for bit. One light.
 Scene displaced_sphere(int triangles);
 
+/// A terrain of about `triangles` triangles generated in code: a height field over a
+/// square grid (two triangles a cell, shared vertices computed once), its heights a sum
+/// of sines from broad hills to fine ripples, seen at a slant with the sky above the
+/// horizon (camera rays that miss everything). One light.
+Scene terrain(int triangles);
+
+/// A random soup of `triangles` triangles: each with its centre uniform in the cube
+/// [-1, 1]^3 and its vertices at random directions and distances around it, so they
+/// overlap and cross each other, slivers included (the hardest case for a BVH's boxes),
+/// and their order in memory has nothing to do with where they lie. A line through the
+/// cube's centre along an axis crosses about 12 of them, whatever their number. One
+/// light.
+Scene random_soup(int triangles, Rng& rng);
+
 /// The camera rays render() casts for a width x height image of scene.view: one through
 /// every pixel centre, built by the camera and pixel-loop modules, w normalised.
 std::vector<Ray> camera_rays(const Scene& scene, const ModuleTable& modules, int width,

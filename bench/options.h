@@ -24,7 +24,7 @@ struct BenchOptions {
     int repeats = 5;            ///< timed repeats per measurement (median reported)
     int kernel_rays = 1 << 17;  ///< rays per kernel ray set
     std::vector<double> distances{1.0, 1e2, 1e4, 1e5, 1e6};  ///< target distances
-    int mesh_triangles = 400000;  ///< size of the procedural displaced sphere
+    int mesh_triangles = 400000;  ///< displaced sphere and terrain; the soup a quarter
     int max_triangles = 2000000;  ///< largest mesh of the scaling section
     int width = 640;              ///< image size of camera rays and renders
     int height = 480;

@@ -436,6 +436,11 @@ void run_scene_section(const BenchOptions& opt) {
     bench_scene("cornell", cornell, modules, opt, 400, tables);
     Scene mesh = displaced_sphere(opt.mesh_triangles);
     bench_scene("displaced sphere", mesh, modules, opt, 401, tables);
+    Scene land = terrain(opt.mesh_triangles);
+    bench_scene("terrain", land, modules, opt, 402, tables);
+    Rng soup_rng(opt.seed, 403);
+    Scene soup = random_soup(std::max(1000, opt.mesh_triangles / 4), soup_rng);
+    bench_scene("random soup", soup, modules, opt, 404, tables);
 
     std::printf("### Build\n\n");
     tables.build.print();
