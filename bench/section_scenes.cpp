@@ -353,6 +353,20 @@ void parts_row(const std::string& name, const Scene& scene, const ModuleTable& m
                pct(s[1] - std::min(s[2], s[1])), pct(s[0] - s[1])});
 }
 
+// One line naming the scene's size, view and lights, as the tables use them
+std::string describe(const std::string& name, const Scene& scene) {
+    const auto v = [](const Vec3& p) { return fmt("(%g, %g, %g)", p.x, p.y, p.z); };
+    std::string lights;
+    for (const PointLight& l : scene.lights)
+        lights += (lights.empty() ? "" : ", ") + v(l.p);
+    return fmt(
+        "- **%s**: %zu triangles, %zu spheres, %zu planes; eye %s, look-at %s, up %s, "
+        "vertical field of view %g degrees; point light%s at %s\n",
+        name.c_str(), scene.triangles.size(), scene.spheres.size(), scene.planes.size(),
+        v(scene.view.eye).c_str(), v(scene.view.lookat).c_str(), v(scene.view.up).c_str(),
+        scene.view.fov, scene.lights.size() == 1 ? "" : "s", lights.c_str());
+}
+
 void bench_scene(const std::string& name, Scene& scene, const ModuleTable& modules,
                  const BenchOptions& opt, std::uint64_t stream, Tables& tables) {
     std::unique_ptr<PeerScene> peer[2];
@@ -433,13 +447,18 @@ void run_scene_section(const BenchOptions& opt) {
     const ModuleTable modules = ModuleTable::make(ModuleSelection::all(Impl::reference));
     Tables tables;
     Scene cornell = cornell_box();
-    bench_scene("cornell", cornell, modules, opt, 400, tables);
     Scene mesh = displaced_sphere(opt.mesh_triangles);
-    bench_scene("displaced sphere", mesh, modules, opt, 401, tables);
     Scene land = terrain(opt.mesh_triangles);
-    bench_scene("terrain", land, modules, opt, 402, tables);
     Rng soup_rng(opt.seed, 403);
     Scene soup = random_soup(std::max(1000, opt.mesh_triangles / 4), soup_rng);
+    std::printf(
+        "The scenes (bench/mesh.h generates the three meshes; camera rays through "
+        "the view, shadow rays towards the light):\n\n%s%s%s%s\n",
+        describe("cornell", cornell).c_str(), describe("displaced sphere", mesh).c_str(),
+        describe("terrain", land).c_str(), describe("random soup", soup).c_str());
+    bench_scene("cornell", cornell, modules, opt, 400, tables);
+    bench_scene("displaced sphere", mesh, modules, opt, 401, tables);
+    bench_scene("terrain", land, modules, opt, 402, tables);
     bench_scene("random soup", soup, modules, opt, 404, tables);
 
     std::printf("### Build\n\n");
