@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "raylab/error.h"
+#include "raylab/input_checks.h"
 
 namespace raylab::bench {
 
@@ -166,6 +167,11 @@ BenchOptions parse_bench_options(int argc, char** argv) {
             throw Error("unknown option '" + arg + "' (see --help)");
         }
     }
+    // Section 5 writes into --out at the end of the run: checked now, by raylab's rule
+    // for output folders (made if missing, inside a writable folder), so that a bad --out
+    // fails before anything is measured
+    if (o.sampling && o.sampling_csv.empty() && !o.help)
+        check_output_path(o.out_dir, OutputKind::folder, "--out");
     return o;
 }
 

@@ -14,8 +14,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <system_error>
 
 #include "raylab/error.h"
 #include "raylab/renderer.h"
@@ -591,6 +593,9 @@ void run_sampling_section(const BenchOptions& opt) {
         light_study(scenes[k], kLightSizes[k], opt, modules, points);
     }
     print_tables(points);
+    std::error_code made;
+    std::filesystem::create_directories(opt.out_dir, made);
+    if (made) throw Error("--out " + opt.out_dir + ": " + made.message());
     write_csv(opt.out_dir + "/sampling.csv", points);
     write_svg(opt.out_dir + "/sampling.svg", points, false);
     write_svg(opt.out_dir + "/sampling-rays.svg", points, true);

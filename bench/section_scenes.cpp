@@ -446,20 +446,27 @@ void run_scene_section(const BenchOptions& opt) {
             peer_description().c_str(), opt.width, opt.height, opt.repeats));
     const ModuleTable modules = ModuleTable::make(ModuleSelection::all(Impl::reference));
     Tables tables;
-    Scene cornell = cornell_box();
-    Scene mesh = displaced_sphere(opt.mesh_triangles);
-    Scene land = terrain(opt.mesh_triangles);
+    // Each scene with its name in the tables and the stream of its random rays
     Rng soup_rng(opt.seed, 403);
-    Scene soup = random_soup(std::max(1000, opt.mesh_triangles / 4), soup_rng);
+    struct Benched {
+        const char* name;
+        Scene scene;
+        std::uint64_t stream;
+    } scenes[] = {
+        {"cornell", cornell_box(), 400},
+        {"displaced sphere", displaced_sphere(opt.mesh_triangles), 401},
+        {"terrain", terrain(opt.mesh_triangles), 402},
+        {"random soup", random_soup(std::max(1000, opt.mesh_triangles / 4), soup_rng),
+         404},
+    };
     std::printf(
         "The scenes (bench/mesh.h generates the three meshes; camera rays through "
-        "the view, shadow rays towards the light):\n\n%s%s%s%s\n",
-        describe("cornell", cornell).c_str(), describe("displaced sphere", mesh).c_str(),
-        describe("terrain", land).c_str(), describe("random soup", soup).c_str());
-    bench_scene("cornell", cornell, modules, opt, 400, tables);
-    bench_scene("displaced sphere", mesh, modules, opt, 401, tables);
-    bench_scene("terrain", land, modules, opt, 402, tables);
-    bench_scene("random soup", soup, modules, opt, 404, tables);
+        "the view, shadow rays towards the light):\n\n");
+    for (const Benched& b : scenes)
+        std::printf("%s", describe(b.name, b.scene).c_str());
+    std::printf("\n");
+    for (Benched& b : scenes)
+        bench_scene(b.name, b.scene, modules, opt, b.stream, tables);
 
     std::printf("### Build\n\n");
     tables.build.print();
