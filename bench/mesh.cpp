@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <unordered_map>
 
 #include "raylab/renderer.h"
 
@@ -45,6 +47,63 @@ class RecordingOccluder : public Occluder {
 };
 
 }  // namespace
+
+Scene icosphere(int triangles) {
+    int level = 0;
+    while (std::int64_t{20} << (2 * (level + 1)) <= triangles)
+        ++level;
+    // The icosahedron's twelve vertices (0, +-1, +-phi) cyclically, on the unit sphere
+    const double phi = (1.0 + std::sqrt(5.0)) / 2.0;
+    std::vector<DVec3> vertices;
+    for (const DVec3 v :
+         {DVec3(-1, phi, 0), DVec3(1, phi, 0), DVec3(-1, -phi, 0), DVec3(1, -phi, 0),
+          DVec3(0, -1, phi), DVec3(0, 1, phi), DVec3(0, -1, -phi), DVec3(0, 1, -phi),
+          DVec3(phi, 0, -1), DVec3(phi, 0, 1), DVec3(-phi, 0, -1), DVec3(-phi, 0, 1)})
+        vertices.push_back(glm::normalize(v));
+    struct Face {
+        std::uint32_t a, b, c;
+    };
+    std::vector<Face> faces = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10},
+                               {0, 10, 11}, {1, 5, 9},  {5, 11, 4}, {11, 10, 2},
+                               {10, 7, 6},  {7, 1, 8},  {3, 9, 4},  {3, 4, 2},
+                               {3, 2, 6},   {3, 6, 8},  {3, 8, 9},  {4, 9, 5},
+                               {2, 4, 11},  {6, 2, 10}, {8, 6, 7},  {9, 8, 1}};
+    for (int k = 0; k < level; ++k) {
+        // Each edge's midpoint once, whichever face asks first
+        std::unordered_map<std::uint64_t, std::uint32_t> midpoints;
+        const auto midpoint = [&](std::uint32_t i, std::uint32_t j) {
+            const std::uint64_t key =
+                std::uint64_t{std::min(i, j)} << 32 | std::max(i, j);
+            const auto found = midpoints.find(key);
+            if (found != midpoints.end()) return found->second;
+            const auto m = static_cast<std::uint32_t>(vertices.size());
+            vertices.push_back(glm::normalize(vertices[i] + vertices[j]));
+            midpoints.emplace(key, m);
+            return m;
+        };
+        std::vector<Face> finer;
+        finer.reserve(4 * faces.size());
+        for (const Face& f : faces) {
+            const std::uint32_t ab = midpoint(f.a, f.b), bc = midpoint(f.b, f.c),
+                                ca = midpoint(f.c, f.a);
+            finer.insert(finer.end(),
+                         {{f.a, ab, ca}, {f.b, bc, ab}, {f.c, ca, bc}, {ab, bc, ca}});
+        }
+        faces = std::move(finer);
+    }
+    // Each vertex rounded to float once, so that its triangles share it bit for bit
+    std::vector<Vec3> points(vertices.begin(), vertices.end());
+    Scene scene;
+    scene.name = "icosphere";
+    scene.materials.push_back(Material{"porcelain", Vec3(0.8f, 0.8f, 0.75f), Vec3(0.0f)});
+    scene.triangles.reserve(faces.size());
+    for (const Face& f : faces)
+        add_outward(scene, points[f.a], points[f.b], points[f.c]);
+    scene.view = View{Vec3(0.0f, 0.8f, 3.0f), Vec3(0.0f), Vec3(0.0f, 1.0f, 0.0f), 45.0f};
+    scene.lights.push_back(PointLight{Vec3(3.0f, 4.0f, 3.0f), Vec3(40.0f)});
+    scene.commit();
+    return scene;
+}
 
 Scene displaced_sphere(int triangles) {
     // 2 nu (nv - 1) triangles with nu = 2 nv

@@ -8,6 +8,13 @@
 
 namespace raylab::bench {
 
+/// A unit icosphere: an icosahedron whose faces are split in four, level after level,
+/// the new vertices (edge midpoints) pushed out onto the sphere; 20 * 4^k triangles, the
+/// most of those that is at most `triangles` (at least the 20 of the icosahedron).
+/// Shared vertices are computed once, so the mesh is watertight bit for bit, and its
+/// triangles are nearly equilateral and of nearly one size. One light.
+Scene icosphere(int triangles);
+
 /// A closed, bumpy mesh of about `triangles` triangles generated in code: a unit sphere
 /// tessellated as a latitude-longitude grid, its radius displaced by a few sines. Shared
 /// vertices are computed once, so the mesh is watertight bit for bit. One light.

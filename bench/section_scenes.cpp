@@ -454,13 +454,14 @@ void run_scene_section(const BenchOptions& opt) {
         std::uint64_t stream;
     } scenes[] = {
         {"cornell", cornell_box(), 400},
+        {"icosphere", icosphere(std::max(1000, opt.mesh_triangles / 4)), 405},
         {"displaced sphere", displaced_sphere(opt.mesh_triangles), 401},
         {"terrain", terrain(opt.mesh_triangles), 402},
         {"random soup", random_soup(std::max(1000, opt.mesh_triangles / 4), soup_rng),
          404},
     };
     std::printf(
-        "The scenes (bench/mesh.h generates the three meshes; camera rays through "
+        "The scenes (bench/mesh.h generates the four meshes; camera rays through "
         "the view, shadow rays towards the light):\n\n");
     for (const Benched& b : scenes)
         std::printf("%s", describe(b.name, b.scene).c_str());
