@@ -188,6 +188,7 @@ void Scene::commit() {
     if (!std::isfinite(ambient) || ambient < 0.0f)
         throw Error("ambient term must be finite and non-negative");
     bvh_.build(boxes);
+    back_with_huge_pages(triangles.data(), triangles.size() * sizeof(SceneTriangle));
     std::vector<SlotPrimitive> slots;
     if (boxes.size() <= kSlotCopyUpTo) {
         const std::uint32_t sphere_count = static_cast<std::uint32_t>(spheres.size());

@@ -84,6 +84,21 @@ inline float box_entry(const RaySlabs& s, const Aabb& box, float tmin, float tma
     return t_enter <= t_exit * kSlabGrow ? t_enter : kInfinity;
 }
 
+/// Arrays from this size on are backed by huge pages (back_with_huge_pages).
+inline constexpr size_t kHugePagesFrom = size_t{4} << 20;
+
+/// Asks the kernel to back the 2 MiB pages lying wholly inside [data, data + bytes)
+/// with huge pages, when bytes >= kHugePagesFrom: on Linux, madvise(MADV_HUGEPAGE) for
+/// the range, then MADV_COLLAPSE (kernel 6.1 on) to do it at once instead of whenever
+/// khugepaged comes by. The BVH's nodes and primitive order and the scene's triangles
+/// ask for it: a random ray through a million-triangle mesh loads nodes and triangles
+/// from tens of megabytes, and with 4 KiB pages nearly every one of those loads also
+/// missed the TLB (Embree, the bench's peer, backs its BVH with huge pages too).
+/// Only a hint: the data is unchanged, and a kernel that declines (huge pages off,
+/// MADV_COLLAPSE unknown, too little free memory) leaves the pages as they are. Returns
+/// true when the kernel collapsed the range now.
+bool back_with_huge_pages(const void* data, size_t bytes);
+
 class Bvh {
   public:
     /// kWidth children. box[2 a] holds the lower bounds along axis a of the child
@@ -112,7 +127,8 @@ class Bvh {
 
     bool empty() const { return prims_.empty(); }
     size_t node_count() const { return nodes_.size(); }
-    /// Bytes held by nodes and the primitive order.
+    /// Bytes held by nodes and the primitive order (both backed by huge pages from
+    /// kHugePagesFrom bytes on).
     size_t bytes() const {
         return nodes_.size() * sizeof(Node) + prims_.size() * sizeof(std::uint32_t);
     }
