@@ -129,6 +129,18 @@ std::string cpu_model() {
 
 }  // namespace
 
+// The kernel's transparent huge page mode, the bracketed word of
+// /sys/kernel/mm/transparent_hugepage/enabled ("always", "madvise" or "never")
+std::string huge_page_mode() {
+    std::ifstream in("/sys/kernel/mm/transparent_hugepage/enabled");
+    std::string line;
+    std::getline(in, line);
+    const size_t open = line.find('['), close = line.find(']');
+    if (open == std::string::npos || close == std::string::npos || close < open)
+        return "unknown (no /sys/kernel/mm/transparent_hugepage/enabled)";
+    return line.substr(open + 1, close - open - 1);
+}
+
 void print_machine(unsigned long long seed, int repeats) {
     char date[64];
     const std::time_t now = std::time(nullptr);
@@ -149,6 +161,11 @@ void print_machine(unsigned long long seed, int repeats) {
         "- reference engine: the %s versions of its queries (chosen at run time; "
         "RAYLAB_NO_AVX2=1 forces the baseline ones)\n",
         reference::geometry_engine()->versions);
+    std::printf(
+        "- transparent huge pages: %s (raylab moves arrays of 4 MiB or more to 2 MiB "
+        "pages with MADV_COLLAPSE, which does not depend on the mode; Embree allocates "
+        "its BVH on them with MADV_HUGEPAGE, granted unless the mode is never)\n",
+        huge_page_mode().c_str());
     std::printf("- seed: %llu (rerun with --seed %llu for the same rays)\n", seed, seed);
     std::printf("- timings: median of %d repeats after one warm-up run\n\n", repeats);
     std::fflush(stdout);

@@ -94,9 +94,11 @@ inline constexpr size_t kHugePagesFrom = size_t{4} << 20;
 /// ask for it: a random ray through a million-triangle mesh loads nodes and triangles
 /// from tens of megabytes, and with 4 KiB pages nearly every one of those loads also
 /// missed the TLB (Embree, the bench's peer, backs its BVH with huge pages too).
-/// Only a hint: the data is unchanged, and a kernel that declines (huge pages off,
-/// MADV_COLLAPSE unknown, too little free memory) leaves the pages as they are. Returns
-/// true when the kernel collapsed the range now.
+/// Only a hint: the data is unchanged, and a kernel that declines (built without
+/// transparent huge pages, older than 6.1, short of free memory) leaves the pages as
+/// they are. MADV_COLLAPSE does not depend on the system's transparent huge page mode
+/// (/sys/kernel/mm/transparent_hugepage/enabled). Returns true when the kernel
+/// collapsed the range now.
 bool back_with_huge_pages(const void* data, size_t bytes);
 
 class Bvh {
