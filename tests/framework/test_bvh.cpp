@@ -3,10 +3,10 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
-#include <cmath>
 #include <string>
 #include <vector>
 
@@ -297,27 +297,30 @@ long huge_kib_over(std::uintptr_t first, std::uintptr_t last) {
 
 }  // namespace
 
-TEST_CASE("bvh: huge pages for large arrays leave the data as it was") {
-    // 16 MiB of a pattern: what the kernel moves into huge pages must read back the same
-    std::vector<std::uint32_t> big((size_t{16} << 20) / sizeof(std::uint32_t));
-    for (size_t k = 0; k < big.size(); ++k)
-        big[k] = static_cast<std::uint32_t>(k * 2654435761u);
-    const bool collapsed = back_with_huge_pages(big.data(), big.size() * sizeof(big[0]));
-    bool same = true;
-    for (size_t k = 0; k < big.size(); ++k)
-        same = same && big[k] == static_cast<std::uint32_t>(k * 2654435761u);
-    CHECK(same);
-    const auto begin = reinterpret_cast<std::uintptr_t>(big.data());
-    const long kib = huge_kib_over(begin, begin + big.size() * sizeof(big[0]));
-    if (collapsed) {
-        // The kernel said it did: at least the six whole 2 MiB pages inside are huge
-        CHECK(kib >= 6 * 2048);
-    } else {
-        MESSAGE(
-            "the kernel declined huge pages here (transparent huge pages off, or "
-            "no MADV_COLLAPSE before Linux 6.1); only the data was checked");
+TEST_SUITE("bvh") {
+    TEST_CASE("huge pages for large arrays leave the data as it was") {
+        // 16 MiB of a pattern, which must read back the same
+        std::vector<std::uint32_t> big((size_t{16} << 20) / sizeof(std::uint32_t));
+        for (size_t k = 0; k < big.size(); ++k)
+            big[k] = static_cast<std::uint32_t>(k * 2654435761u);
+        const bool collapsed =
+            back_with_huge_pages(big.data(), big.size() * sizeof(big[0]));
+        bool same = true;
+        for (size_t k = 0; k < big.size(); ++k)
+            same = same && big[k] == static_cast<std::uint32_t>(k * 2654435761u);
+        CHECK(same);
+        const auto begin = reinterpret_cast<std::uintptr_t>(big.data());
+        const long kib = huge_kib_over(begin, begin + big.size() * sizeof(big[0]));
+        if (collapsed) {
+            // The kernel said it did: at least the six whole 2 MiB pages inside are huge
+            CHECK(kib >= 6 * 2048);
+        } else {
+            MESSAGE(
+                "the kernel declined huge pages here (transparent huge pages off, or "
+                "no MADV_COLLAPSE before Linux 6.1); only the data was checked");
+        }
+        // Below kHugePagesFrom nothing is asked
+        std::vector<std::uint32_t> small(kHugePagesFrom / sizeof(std::uint32_t) - 1);
+        CHECK_FALSE(back_with_huge_pages(small.data(), small.size() * sizeof(small[0])));
     }
-    // Below kHugePagesFrom nothing is asked
-    std::vector<std::uint32_t> small(kHugePagesFrom / sizeof(std::uint32_t) - 1);
-    CHECK_FALSE(back_with_huge_pages(small.data(), small.size() * sizeof(small[0])));
 }
