@@ -81,34 +81,44 @@ RAYLAB_INLINE void closest_hit_query(const Scene& scene, const Ray& r,
         closest_hit_from<Avx>(scene, Primitives(scene), r, counters, hit, best);
 }
 
-// True when anything lies on r in [tmin, tmax]
+// True when anything lies on r in [tmin, tmax]: the module path's tests in its order
+// (Scene::any_hit), the hint's slot first
 template <bool Avx, class Source>
 RAYLAB_INLINE bool any_hit_from(const Scene& scene, const Source& source, const Ray& r,
-                                TraceCounters& counters) {
+                                TraceCounters& counters, AnyHitHint* hint) {
+    const WoopRay q(r);
+    // The test of slot k
+    const auto blocks = [&](std::uint32_t k) __attribute__((always_inline)) {
+        ++counters.intersection_tests;
+        TriangleExtra extra;
+        return !std::isnan(source.t(r, q, k, r.tmax, extra));
+    };
+    if (hint && hint->slot < scene.bvh().prims().size() && blocks(hint->slot))
+        return true;
     for (const ScenePlane& p : scene.planes) {
         ++counters.intersection_tests;
         if (!std::isnan(plane_t(r, p.plane, r.tmax))) return true;
     }
-    const WoopRay q(r);
     bool hit = false;
+    std::uint32_t stopped = AnyHitHint::kNone;
     const auto visit = [&](std::uint32_t first, std::uint32_t count, float&) {
         for (std::uint32_t k = first; k < first + count && !hit; ++k) {
-            ++counters.intersection_tests;
-            TriangleExtra extra;
-            hit = !std::isnan(source.t(r, q, k, r.tmax, extra));
+            hit = blocks(k);
+            if (hit) stopped = k;
         }
         return hit;
     };
     scene.bvh().traverse_any<Avx>(r, visit, counters.bvh_nodes);
+    if (hint) hint->slot = stopped;
     return hit;
 }
 
 template <bool Avx>
 RAYLAB_INLINE bool any_hit_query(const Scene& scene, const Ray& r,
-                                 TraceCounters& counters) {
+                                 TraceCounters& counters, AnyHitHint* hint) {
     if (const Scene::SlotPrimitive* slots = scene.slot_primitives())
-        return any_hit_from<Avx>(scene, SlotPrimitives{slots}, r, counters);
-    return any_hit_from<Avx>(scene, Primitives(scene), r, counters);
+        return any_hit_from<Avx>(scene, SlotPrimitives{slots}, r, counters, hint);
+    return any_hit_from<Avx>(scene, Primitives(scene), r, counters, hint);
 }
 
 // The queries compiled for the baseline and, on x86-64, for AVX2 (engine_simd.h)
@@ -117,8 +127,9 @@ RAYLAB_ENGINE_VERSIONS(closest_hit_query, void, closest_hit_versions,
                         Hit& hit, PrimRef& best),
                        (scene, r, counters, hit, best))
 RAYLAB_ENGINE_VERSIONS(any_hit_query, bool, any_hit_versions,
-                       (const Scene& scene, const Ray& r, TraceCounters& counters),
-                       (scene, r, counters))
+                       (const Scene& scene, const Ray& r, TraceCounters& counters,
+                        AnyHitHint* hint),
+                       (scene, r, counters, hint))
 
 }  // namespace
 

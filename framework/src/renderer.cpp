@@ -88,6 +88,9 @@ class PixelShader {
           occluder_(scene, modules, counters.trace),
           centre_(scene.bounds().centre()) {}
 
+    // The shadow rays of the next pixels start without the last blocker's hint
+    void forget_blocker() { occluder_.forget_blocker(); }
+
     // The next tile's kept camera hits (CameraHits): reuse them in order, or keep them
     void begin_tile(std::vector<CameraHits::Sample>* hits, bool reuse, bool keep) {
         tile_hits_ = hits;
@@ -384,6 +387,9 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
                     const Tile tile{x0, y0, std::min(x0 + kTileSize, settings.width),
                                     std::min(y0 + kTileSize, settings.height)};
                     if (kept) shader.begin_tile(&kept->tiles[size_t(t)], reuse, !reuse);
+                    // Each tile starts without a shadow hint: which thread had the tile
+                    // before must not change its work counts
+                    shader.forget_blocker();
                     pass(tile, radiance, shader);
                 }
             } catch (...) {

@@ -348,33 +348,40 @@ std::optional<Hit> Scene::closest_hit(const ModuleTable& modules, const Ray& r,
     return best;
 }
 
-bool Scene::any_hit(const ModuleTable& modules, const Ray& r,
-                    TraceCounters& counters) const {
+bool Scene::any_hit(const ModuleTable& modules, const Ray& r, TraceCounters& counters,
+                    AnyHitHint* hint) const {
     if (const GeometryEngine* engine = engine_for(modules))
-        return engine->any_hit(*this, r, counters);
+        return engine->any_hit(*this, r, counters, hint);
+    const std::uint32_t sphere_count = static_cast<std::uint32_t>(spheres.size());
+    const std::uint32_t* prims = bvh_.prims().data();
+    // The module's answer for BVH slot k
+    const auto blocks = [&](std::uint32_t k) {
+        ++counters.intersection_tests;
+        const std::uint32_t p = prims[k];
+        if (p < sphere_count)
+            return modules.intersect_sphere(r, spheres[p].sphere).has_value();
+        const SceneTriangle& t = triangles[p - sphere_count];
+        return modules.intersect_triangle(r, t.v0, t.v1, t.v2).has_value();
+    };
+    // The hint's slot first (the engine's query does the same, in the same order)
+    if (hint && hint->slot < bvh_.prims().size() && blocks(hint->slot)) return true;
     for (const ScenePlane& p : planes) {
         ++counters.intersection_tests;
         if (modules.intersect_plane(r, p.plane)) return true;
     }
-    const std::uint32_t sphere_count = static_cast<std::uint32_t>(spheres.size());
-    const std::uint32_t* prims = bvh_.prims().data();
     bool hit = false;
+    std::uint32_t stopped = AnyHitHint::kNone;
     bvh_.traverse_any(
         r,
         [&](std::uint32_t first, std::uint32_t count, float&) {
             for (std::uint32_t k = first; k < first + count && !hit; ++k) {
-                ++counters.intersection_tests;
-                const std::uint32_t p = prims[k];
-                if (p < sphere_count) {
-                    hit = modules.intersect_sphere(r, spheres[p].sphere).has_value();
-                } else {
-                    const SceneTriangle& t = triangles[p - sphere_count];
-                    hit = modules.intersect_triangle(r, t.v0, t.v1, t.v2).has_value();
-                }
+                hit = blocks(k);
+                if (hit) stopped = k;
             }
             return hit;
         },
         counters.bvh_nodes);
+    if (hint) hint->slot = stopped;
     return hit;
 }
 

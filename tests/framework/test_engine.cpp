@@ -343,4 +343,92 @@ TEST_SUITE("engine") {
         render(scene, scene.view, settings, engine_table(), expected);
         CHECK(image.pixels == expected.pixels);
     }
+
+    TEST_CASE(
+        "a hint (the last blocker) changes no answer, and both paths take it alike") {
+        const ModuleTable fast = engine_table(), slow = module_path_table();
+        for (const auto& [name, scene] : test_scenes()) {
+            const std::string& scene_name = name;
+            INFO("scene " << scene_name);
+            const Aabb box = scene.bounds();
+            const Vec3 centre = box.centre(), size = box.hi - box.lo;
+            Rng rng(91);
+            // Shadow-like rays: from points in the scene towards one light, neighbours
+            // close together (runs of ten from nearby points), as a tile's are
+            const Vec3 light = centre + Vec3(0.1f, 0.45f, 0.2f) * size;
+            TraceCounters hf, hs, plain;
+            AnyHitHint a, b;
+            int blocked = 0, tried = 0;
+            Vec3 base(0.0f);
+            for (int k = 0; k < 4000; ++k) {
+                if (k % 10 == 0) base = centre + size * rng.in_box(-0.45f, 0.45f);
+                const Vec3 o = base + 0.002f * size * rng.in_box(-1.0f, 1.0f);
+                const Vec3 d = light - o;
+                const float len = glm::length(d);
+                const Ray r{o, d / len, 1e-4f * len, len * (1.0f - 1e-4f)};
+                INFO("ray " << k << ": " << r);
+                tried += a.slot != AnyHitHint::kNone;
+                const bool truth = scene.any_hit(slow, r, plain);
+                const bool with_fast = scene.any_hit(fast, r, hf, &a);
+                const bool with_slow = scene.any_hit(slow, r, hs, &b);
+                CHECK(with_fast == truth);
+                CHECK(with_slow == truth);
+                // The same tests in the same order leave the same hint
+                CHECK(a.slot == b.slot);
+                blocked += truth;
+            }
+            // The rays meet blockers and the hints were tried: the check means something
+            CHECK(blocked > 200);
+            CHECK(tried > 200);
+            CHECK(hf.intersection_tests == hs.intersection_tests);
+            CHECK(hf.bvh_nodes == hs.bvh_nodes);
+        }
+    }
+
+    TEST_CASE("a ray blocked again by its hint's primitive skips the walk") {
+        const ModuleTable fast = engine_table(), slow = module_path_table();
+        const Scene scene = cornell_box();
+        // Down from under the ceiling onto the floor: the floor blocks it
+        const Ray r{Vec3(0.0f, 0.9f, 0.0f), Vec3(0.0f, -1.0f, 0.0f), 1e-4f, 10.0f};
+        for (const ModuleTable* m : {&fast, &slow}) {
+            INFO((m == &fast ? "engine" : "module path"));
+            AnyHitHint hint;
+            TraceCounters first, second;
+            REQUIRE(scene.any_hit(*m, r, first, &hint));
+            REQUIRE(hint.slot != AnyHitHint::kNone);
+            const std::uint32_t blocker = hint.slot;
+            CHECK(scene.any_hit(*m, r, second, &hint));
+            CHECK(second.intersection_tests == 1);
+            CHECK(second.bvh_nodes == 0);
+            CHECK(hint.slot == blocker);
+            // A ray nothing blocks clears it, after trying it
+            TraceCounters third;
+            const Ray up{Vec3(0.0f, 0.0f, 0.0f), Vec3(0.0f, 1.0f, 0.0f), 1e-4f, 0.5f};
+            CHECK_FALSE(scene.any_hit(*m, up, third, &hint));
+            CHECK(hint.slot == AnyHitHint::kNone);
+            CHECK(third.intersection_tests >= 1);
+        }
+    }
+
+    TEST_CASE("a hint from before a commit() with fewer primitives is not tried") {
+        const ModuleTable fast = engine_table(), slow = module_path_table();
+        Scene scene = cornell_box();
+        const Ray r{Vec3(0.0f, 0.9f, 0.0f), Vec3(0.0f, -1.0f, 0.0f), 1e-4f, 10.0f};
+        AnyHitHint a, b;
+        TraceCounters c;
+        REQUIRE(scene.any_hit(fast, r, c, &a));
+        REQUIRE(scene.any_hit(slow, r, c, &b));
+        // The slot past the end of a scene of one triangle
+        a.slot = b.slot = static_cast<std::uint32_t>(scene.bvh().prims().size() - 1);
+        scene.triangles.resize(1);
+        scene.commit();
+        REQUIRE(scene.bvh().prims().size() == 1);
+        TraceCounters hf, hs, plain;
+        const bool truth = scene.any_hit(slow, r, plain);
+        CHECK(scene.any_hit(fast, r, hf, &a) == truth);
+        CHECK(scene.any_hit(slow, r, hs, &b) == truth);
+        // Not tried: the same tests as without a hint
+        CHECK(hf.intersection_tests == plain.intersection_tests);
+        CHECK(hs.intersection_tests == plain.intersection_tests);
+    }
 }

@@ -19,6 +19,7 @@ namespace raylab {
 
 class Scene;
 struct TraceCounters;
+struct AnyHitHint;
 
 /// The primitive a query found nearest.
 struct PrimRef {
@@ -43,8 +44,10 @@ struct GeometryEngine {
     /// which the store buffer cannot forward: 4 % of a Cornell box camera ray.)
     void (*closest_hit)(const Scene& scene, const Ray& r, TraceCounters& counters,
                         Hit& hit, PrimRef& prim);
-    /// What the module path's any-hit returns.
-    bool (*any_hit)(const Scene& scene, const Ray& r, TraceCounters& counters);
+    /// What the module path's any-hit returns, counting the same tests, and leaving the
+    /// hint (null: none) as it leaves it (Scene::any_hit, AnyHitHint).
+    bool (*any_hit)(const Scene& scene, const Ray& r, TraceCounters& counters,
+                    AnyHitHint* hint);
     /// closest_hit for each of n <= kPacketSize rays at once (hits[k], prims[k] for
     /// rays[k], bit for bit): a packet of rays from one origin, as a block of a tile's
     /// camera rays, shares one walk of the BVH (a frustum test per node) and runs each

@@ -74,6 +74,19 @@ inline bool operator!=(const View& a, const View& b) {
 /// direction, fov in (0, 180). Throws raylab::Error naming the problem.
 void validate(const View& view);
 
+/// A shadow cache for Scene::any_hit (Haines and Greenberg's "last object hit", 1986):
+/// the BVH slot whose primitive stopped the last query that found something. The shadow
+/// rays of neighbouring pixels towards one light are often stopped by the same
+/// primitive, so a query given a hint tests that primitive first and walks the BVH only
+/// when it does not block the ray. The answer is the same either way (any primitive in
+/// [tmin, tmax] blocks the ray, and the walk would have found one), and so are the tests
+/// on the module path and in the reference's engine, which both take the hint. A slot
+/// outside the scene's (after a commit() with fewer primitives) is not tried.
+struct AnyHitHint {
+    static constexpr std::uint32_t kNone = 0xffffffffu;
+    std::uint32_t slot = kNone;  ///< the slot to try first, or kNone
+};
+
 /// Work counters of the queries; one per thread, summed per frame.
 struct TraceCounters {
     std::uint64_t intersection_tests = 0;  ///< primitive tests (plane, sphere, triangle)
@@ -137,7 +150,15 @@ class Scene {
     }
 
     /// True when anything lies on r in [tmin, tmax]; stops at the first hit.
-    bool any_hit(const ModuleTable& modules, const Ray& r, TraceCounters& counters) const;
+    bool any_hit(const ModuleTable& modules, const Ray& r,
+                 TraceCounters& counters) const {
+        return any_hit(modules, r, counters, nullptr);
+    }
+    /// The same, trying hint's slot first (counted as a test like any other); the hint
+    /// then names the slot that stopped r, is left as it was when a plane did, or is
+    /// cleared when nothing did. The shadow module's occluder (SceneOccluder) keeps one.
+    bool any_hit(const ModuleTable& modules, const Ray& r, TraceCounters& counters,
+                 AnyHitHint* hint) const;
 
     const Bvh& bvh() const { return bvh_; }
 
@@ -208,21 +229,27 @@ class Scene {
     bool committed_ = false;            // the last commit() succeeded: the engine may run
 };
 
-/// The Occluder the shadow module receives: the scene's any-hit query, counted.
+/// The Occluder the shadow module receives: the scene's any-hit query, counted, with
+/// the hint of the last shadow ray this object asked about (AnyHitHint). The renderer
+/// keeps one per thread and clears its hint at each tile, so a tile's pixels share it.
 class SceneOccluder : public Occluder {
   public:
     SceneOccluder(const Scene& scene, const ModuleTable& modules, TraceCounters& counters)
         : scene_(scene), modules_(modules), counters_(counters) {}
     bool occluded(const Ray& r) const override {
         ++shadow_rays;
-        return scene_.any_hit(modules_, r, counters_);
+        return scene_.any_hit(modules_, r, counters_, &hint_);
     }
     mutable std::uint64_t shadow_rays = 0;  ///< any-hit queries made through this object
+    /// The next ray starts without a hint (the renderer: at each tile, so that the work
+    /// counts do not depend on which thread rendered the tile before).
+    void forget_blocker() { hint_ = AnyHitHint{}; }
 
   private:
     const Scene& scene_;
     const ModuleTable& modules_;
     TraceCounters& counters_;
+    mutable AnyHitHint hint_;
 };
 
 }  // namespace raylab
