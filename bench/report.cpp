@@ -9,7 +9,9 @@
 #include <fstream>
 #include <limits>
 #include <thread>
+#include <vector>
 
+#include "raylab/bvh.h"
 #include "raylab/engine.h"
 
 namespace raylab::bench {
@@ -161,11 +163,14 @@ void print_machine(unsigned long long seed, int repeats) {
         "- reference engine: the %s versions of its queries (chosen at run time; "
         "RAYLAB_NO_AVX2=1 forces the baseline ones)\n",
         reference::geometry_engine()->versions);
+    // raylab's request, tried once on an array of its own
+    std::vector<char> probe(2 * kHugePagesFrom, 1);
+    const bool granted = back_with_huge_pages(probe.data(), probe.size());
     std::printf(
-        "- transparent huge pages: %s (raylab moves arrays of 4 MiB or more to 2 MiB "
-        "pages with MADV_COLLAPSE, which does not depend on the mode; Embree allocates "
-        "its BVH on them with MADV_HUGEPAGE, granted unless the mode is never)\n",
-        huge_page_mode().c_str());
+        "- huge pages: raylab's arrays of 4 MiB or more (MADV_COLLAPSE, whatever the "
+        "mode below): %s; Embree's BVH (MADV_HUGEPAGE): unless the mode is never; "
+        "the kernel's transparent huge page mode: %s\n",
+        granted ? "granted here" : "declined here", huge_page_mode().c_str());
     std::printf("- seed: %llu (rerun with --seed %llu for the same rays)\n", seed, seed);
     std::printf("- timings: median of %d repeats after one warm-up run\n\n", repeats);
     std::fflush(stdout);

@@ -87,16 +87,18 @@ inline float box_entry(const RaySlabs& s, const Aabb& box, float tmin, float tma
 /// Arrays from this size on are backed by huge pages (back_with_huge_pages).
 inline constexpr size_t kHugePagesFrom = size_t{4} << 20;
 
-/// Asks the kernel to back the 2 MiB pages lying wholly inside [data, data + bytes)
-/// with huge pages, when bytes >= kHugePagesFrom: on Linux, madvise(MADV_HUGEPAGE) for
-/// the range, then MADV_COLLAPSE (kernel 6.1 on) to do it at once instead of whenever
-/// khugepaged comes by. The BVH's nodes and primitive order and the scene's triangles
-/// ask for it: a random ray through a million-triangle mesh loads nodes and triangles
-/// from tens of megabytes, and with 4 KiB pages nearly every one of those loads also
-/// missed the TLB (Embree, the bench's peer, backs its BVH with huge pages too).
-/// Only a hint: the data is unchanged, and a kernel that declines (built without
-/// transparent huge pages, older than 6.1, short of free memory) leaves the pages as
-/// they are. MADV_COLLAPSE does not depend on the system's transparent huge page mode
+/// Asks the kernel to back the huge pages (2 MiB on x86-64) lying wholly inside
+/// [data, data + bytes) with huge pages, when bytes >= kHugePagesFrom: on Linux,
+/// madvise(MADV_HUGEPAGE) for the range, then MADV_COLLAPSE (kernel 6.1 on; retried on
+/// EAGAIN) to do it at once instead of whenever khugepaged comes by. The BVH's nodes and
+/// primitive order and the scene's triangles ask for it: a random ray through a
+/// million-triangle mesh loads nodes and triangles from tens of megabytes, and with 4 KiB
+/// pages nearly every one of those loads also missed the TLB (Embree, the bench's peer,
+/// backs its BVH with huge pages too). Only a hint: the data is unchanged, and a kernel
+/// that declines (built without transparent huge pages, older than 6.1, short of free
+/// memory) leaves the pages as they are. The collapse is synchronous: on a machine short
+/// of free huge pages it may compact memory first, and commit() waits for it.
+/// MADV_COLLAPSE does not depend on the system's transparent huge page mode
 /// (/sys/kernel/mm/transparent_hugepage/enabled). Returns true when the kernel
 /// collapsed the range now.
 bool back_with_huge_pages(const void* data, size_t bytes);
