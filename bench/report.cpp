@@ -129,8 +129,6 @@ std::string cpu_model() {
     return "unknown";
 }
 
-}  // namespace
-
 // The kernel's transparent huge page mode, the bracketed word of
 // /sys/kernel/mm/transparent_hugepage/enabled ("always", "madvise" or "never")
 std::string huge_page_mode() {
@@ -142,6 +140,8 @@ std::string huge_page_mode() {
         return "unknown (no /sys/kernel/mm/transparent_hugepage/enabled)";
     return line.substr(open + 1, close - open - 1);
 }
+
+}  // namespace
 
 void print_machine(unsigned long long seed, int repeats) {
     char date[64];

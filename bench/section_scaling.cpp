@@ -84,11 +84,11 @@ void speed_rows(const Scene& scene, const ModuleTable& modules, const PeerScene*
         record_target(fmt("%zu triangles, %s rays, 1 thread: raylab / Embree", triangles,
                           name.c_str()),
                       s[1] / s[0], 0.6, true);
-    tables.speed.row(
-        {fmt("%zu", scene.triangles.size()), name, "closest", fmt("%.0f", 1e9 * s[0] / n),
-         peer ? fmt("%.0f", 1e9 * s[1] / n) : "-", peer ? fmt("%.3f", s[1] / s[0]) : "-",
-         fmt("%.1f", static_cast<double>(counters.bvh_nodes) / n),
-         fmt("%.1f", static_cast<double>(counters.intersection_tests) / n)});
+    tables.speed.row({fmt("%zu", triangles), name, "closest", fmt("%.0f", 1e9 * s[0] / n),
+                      peer ? fmt("%.0f", 1e9 * s[1] / n) : "-",
+                      peer ? fmt("%.3f", s[1] / s[0]) : "-",
+                      fmt("%.1f", static_cast<double>(counters.bvh_nodes) / n),
+                      fmt("%.1f", static_cast<double>(counters.intersection_tests) / n)});
 }
 
 }  // namespace

@@ -99,18 +99,19 @@ RAYLAB_INLINE bool any_hit_from(const Scene& scene, const Source& source, const 
         ++counters.intersection_tests;
         if (!std::isnan(plane_t(r, p.plane, r.tmax))) return true;
     }
-    bool hit = false;
-    std::uint32_t stopped = AnyHitHint::kNone;
+    std::uint32_t stopped = AnyHitHint::kNone;  // the slot that blocks r, once found
     const auto visit = [&](std::uint32_t first, std::uint32_t count, float&) {
-        for (std::uint32_t k = first; k < first + count && !hit; ++k) {
-            hit = blocks(k);
-            if (hit) stopped = k;
+        for (std::uint32_t k = first; k < first + count; ++k) {
+            if (blocks(k)) {
+                stopped = k;
+                return true;
+            }
         }
-        return hit;
+        return false;
     };
     scene.bvh().traverse_any<Avx>(r, visit, counters.bvh_nodes);
     if (hint) hint->slot = stopped;
-    return hit;
+    return stopped != AnyHitHint::kNone;
 }
 
 template <bool Avx>

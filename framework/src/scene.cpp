@@ -369,20 +369,21 @@ bool Scene::any_hit(const ModuleTable& modules, const Ray& r, TraceCounters& cou
         ++counters.intersection_tests;
         if (modules.intersect_plane(r, p.plane)) return true;
     }
-    bool hit = false;
-    std::uint32_t stopped = AnyHitHint::kNone;
+    std::uint32_t stopped = AnyHitHint::kNone;  // the slot that blocks r, once found
     bvh_.traverse_any(
         r,
         [&](std::uint32_t first, std::uint32_t count, float&) {
-            for (std::uint32_t k = first; k < first + count && !hit; ++k) {
-                hit = blocks(k);
-                if (hit) stopped = k;
+            for (std::uint32_t k = first; k < first + count; ++k) {
+                if (blocks(k)) {
+                    stopped = k;
+                    return true;
+                }
             }
-            return hit;
+            return false;
         },
         counters.bvh_nodes);
     if (hint) hint->slot = stopped;
-    return hit;
+    return stopped != AnyHitHint::kNone;
 }
 
 }  // namespace raylab
