@@ -22,6 +22,23 @@
 
 using namespace raylab;
 
+#if RAYLAB_AVX_NODES
+// The BVH's test hook (raylab/bvh.h): its AVX2 walk's placing of three or more hit
+// children (place_sorted_avx) on its own
+namespace raylab {
+struct BvhTestAccess {
+    struct Entry {
+        std::uint32_t child;
+        float t_enter;
+    };
+    static int place(const Bvh& bvh, const Bvh::Node& node, const float* t, int mask,
+                     Entry* out) {
+        return bvh.place_sorted_avx(node, t, mask, out);
+    }
+};
+}  // namespace raylab
+#endif
+
 namespace {
 
 using Slot = Scene::SlotPrimitive;
@@ -225,6 +242,52 @@ __attribute__((target("avx2"), flatten)) Walk avx_walk(const Bvh& bvh,
 }
 #endif
 
+// Every leaf a closest-hit walk visits, in order, never stopping; with prune, each leaf
+// sets tmax to its first slot's distance stand-in (1 + first / 64), so entry distances
+// past it are skipped
+template <class F>
+Walk walk_all(const std::vector<Ray>& rays, bool prune, F&& traverse) {
+    Walk w;
+    for (const Ray& r : rays) {
+        traverse(
+            r,
+            [&](std::uint32_t first, std::uint32_t count, float& tmax) {
+                w.leaves.push_back(first);
+                w.leaves.push_back(count);
+                if (prune) tmax = std::fmin(tmax, 1.0f + float(first) / 64.0f);
+                return false;
+            },
+            w.nodes);
+        w.leaves.push_back(~0u);
+    }
+    return w;
+}
+
+Walk sse_walk_all(const Bvh& bvh, const std::vector<Ray>& rays, bool prune) {
+    return walk_all(rays, prune, [&](const Ray& r, auto&& visit, std::uint64_t& nodes) {
+        bvh.traverse(r, visit, nodes);
+    });
+}
+
+#if RAYLAB_AVX_NODES
+__attribute__((target("avx2"), flatten)) Walk avx_walk_all(const Bvh& bvh,
+                                                           const std::vector<Ray>& rays,
+                                                           bool prune) {
+    Walk w;
+    for (const Ray& r : rays) {
+        const auto visit = [&](std::uint32_t first, std::uint32_t count, float& tmax) {
+            w.leaves.push_back(first);
+            w.leaves.push_back(count);
+            if (prune) tmax = std::fmin(tmax, 1.0f + float(first) / 64.0f);
+            return false;
+        };
+        bvh.traverse<true>(r, visit, w.nodes);
+        w.leaves.push_back(~0u);
+    }
+    return w;
+}
+#endif
+
 Scene sphere_scene(int n, std::uint64_t seed) {
     Scene scene;
     scene.materials.push_back(Material{});
@@ -361,6 +424,118 @@ TEST_SUITE("slot copy") {
                 const Walk b = sse_walk(scene.bvh(), rays, sorted);
                 CHECK(a.nodes == b.nodes);
                 CHECK(a.leaves == b.leaves);
+            }
+        }
+#endif
+        check_rays(scene, rays);
+    }
+
+    // The AVX2 walk's placing of three or more hit children against the insertion sort
+    // of the SSE walk (Bvh::walk), on its own: every mask of three or more children, with
+    // entry distances drawn from values that tie (+-0, +-inf, denormals) and NaN in the
+    // lanes that are not hit (a hit child's t is never NaN)
+    TEST_CASE("review: the AVX walk places hit children as the insertion sort does") {
+#if RAYLAB_AVX_NODES
+        if (!__builtin_cpu_supports("avx2")) {
+            MESSAGE("no AVX2 here: nothing to compare");
+            return;
+        }
+        using Entry = BvhTestAccess::Entry;
+        const Bvh bvh;  // the leaves' children are never prefetched: no nodes needed
+        Bvh::Node node{};
+        for (int k = 0; k < Bvh::kWidth; ++k)
+            node.child[k] = Bvh::kLeaf | 1u << Bvh::kCountShift | std::uint32_t(k);
+        const float values[] = {-kInfinity, -1.0f, -0.0f, 0.0f,      kDenorm,
+                                -kDenorm,   0.5f,  1.0f,  kInfinity, 0x1p-126f};
+        Rng rng(77);
+        int masks = 0, cases = 0, ties = 0;
+        for (int mask = 0; mask < 256; ++mask) {
+            if (__builtin_popcount(unsigned(mask)) < 3) continue;
+            ++masks;
+            for (int draw = 0; draw < 400; ++draw) {
+                alignas(32) float t[Bvh::kWidth];
+                for (int k = 0; k < Bvh::kWidth; ++k) {
+                    // the first ten draws: every hit lane the same value
+                    const float v = draw < 10 ? values[draw] : values[rng.next() % 10];
+                    t[k] = mask >> k & 1 ? v : kNaN;
+                }
+                // The insertion sort, as Bvh::walk runs it
+                Entry want[Bvh::kWidth];
+                int top = 0;
+                for (int m = mask; m != 0; m &= m - 1) {
+                    const int k = __builtin_ctz(unsigned(m));
+                    const Entry e{node.child[k], t[k]};
+                    int j = top++;
+                    for (; j > 0 && want[j - 1].t_enter < e.t_enter; --j)
+                        want[j] = want[j - 1];
+                    want[j] = e;
+                }
+                Entry got[Bvh::kWidth];
+                for (Entry& e : got)
+                    e = Entry{0u, kNaN};
+                REQUIRE(BvhTestAccess::place(bvh, node, t, mask, got) == top);
+                INFO("mask " << mask << ", draw " << draw);
+                for (int j = 0; j < top; ++j) {
+                    CHECK(got[j].child == want[j].child);
+                    CHECK(same_bits(got[j].t_enter, want[j].t_enter));
+                    if (j > 0 && want[j].t_enter == want[j - 1].t_enter) ++ties;
+                }
+                ++cases;
+            }
+        }
+        CHECK(masks == 219);
+        CHECK(ties > 50000);
+        MESSAGE(cases << " cases, " << ties << " ties");
+#else
+        MESSAGE("RAYLAB_AVX_NODES is 0 in this build");
+#endif
+    }
+
+    // Eight cubes, one in each octant with a corner at the origin: the root's eight
+    // children all touch the origin, so rays from it (and along the planes through it)
+    // enter three to eight of them at the same t, 0 or -0 or with tmin below 0 at
+    // distances that tie. Every leaf each walk visits, in order, AVX against SSE, with
+    // no stop and no pruning, then with the nearest hit so far shrinking tmax
+    TEST_CASE("review: eight cubes around the origin, every child entered at once") {
+        Scene scene;
+        scene.materials.push_back(Material{});
+        for (int o = 0; o < 8; ++o) {
+            const Vec3 s(o & 1 ? 1.0f : -1.0f, o & 2 ? 1.0f : -1.0f,
+                         o & 4 ? 1.0f : -1.0f);
+            Vec3 c[8];
+            for (int v = 0; v < 8; ++v)
+                c[v] = s * Vec3(float(v & 1), float(v >> 1 & 1), float(v >> 2 & 1));
+            const int faces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1},
+                                     {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
+            for (const auto& f : faces) {
+                scene.triangles.push_back(SceneTriangle{c[f[0]], c[f[1]], c[f[2]], 0});
+                scene.triangles.push_back(SceneTriangle{c[f[0]], c[f[2]], c[f[3]], 0});
+            }
+        }
+        scene.commit();
+        // The root and one node per cube: the root's children are the eight cubes
+        REQUIRE(scene.bvh().node_count() == 9);
+        const float comps[] = {1.0f, -1.0f, 0.0f, -0.0f, 0.5f, -0.25f};
+        const float tmins[] = {0.0f, -0.0f, -3.0f, -kInfinity};
+        std::vector<Ray> rays;
+        for (int k = 0; k < 6 * 6 * 6 * 4; ++k) {
+            Vec3 w(comps[k % 6], comps[k / 6 % 6], comps[k / 36 % 6]);
+            if (w == Vec3(0.0f)) continue;
+            const float tmin = tmins[k / 216];
+            rays.push_back(Ray{Vec3(0.0f), w, tmin, kInfinity});
+            rays.push_back(Ray{Vec3(0.0f, 0.0f, 0.5f), w, tmin, kInfinity});
+            rays.push_back(Ray{Vec3(0.5f, -0.0f, 0.0f), w, tmin, kInfinity});
+        }
+#if RAYLAB_AVX_NODES
+        if (__builtin_cpu_supports("avx2")) {
+            for (const bool prune : {false, true}) {
+                INFO("prune " << prune);
+                const Walk a = avx_walk_all(scene.bvh(), rays, prune);
+                const Walk b = sse_walk_all(scene.bvh(), rays, prune);
+                CHECK(a.nodes == b.nodes);
+                CHECK(a.leaves == b.leaves);
+                // Rays from the origin with tmin 0 meet all eight cubes' nodes
+                CHECK(a.nodes >= rays.size());
             }
         }
 #endif

@@ -15,6 +15,7 @@
 // scene and ray set, and 16-wide in between.
 #pragma once
 
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -103,6 +104,8 @@ inline constexpr size_t kHugePagesFrom = size_t{4} << 20;
 /// collapsed the range now.
 bool back_with_huge_pages(const void* data, size_t bytes);
 
+struct BvhTestAccess;  // the tests' way to private parts of Bvh
+
 class Bvh {
   public:
     /// kWidth children. box[2 a] holds the lower bounds along axis a of the child
@@ -144,10 +147,12 @@ class Bvh {
     /// visit(first, count, tmax) is called with the leaf's slots [first, first + count)
     /// and a reference to the current tmax, which it may shrink (closest hit); it returns
     /// true to stop (any hit). nodes_visited counts the interior nodes tested.
-    /// Avx: each node's eight boxes in one AVX slab test instead of two SSE ones (the
-    /// same results); only from code compiled for AVX2 (the reference engine's AVX2
-    /// versions, which inline the walk), on a processor that has it. Without SSE2 or
-    /// off x86-64 (RAYLAB_AVX_NODES 0) it is ignored.
+    /// Avx: each node's eight boxes in one AVX slab test instead of two SSE ones, and
+    /// three or more hit children put in order by place_sorted_avx instead of the
+    /// insertion sort (the same results, the same order); only from code compiled for
+    /// AVX2 (the reference engine's AVX2 versions, which inline the walk), on a
+    /// processor that has it. Without SSE2 or off x86-64 (RAYLAB_AVX_NODES 0) it is
+    /// ignored.
     template <bool Avx = false, class Visit>
     void traverse(const Ray& r, Visit&& visit, std::uint64_t& nodes_visited) const {
         walk<true, Avx>(r, visit, nodes_visited);
@@ -183,6 +188,7 @@ class Bvh {
                           std::uint64_t& nodes_visited) const;
 
   private:
+    friend struct BvhTestAccess;  // tests/framework: place_sorted_avx on its own
     template <bool Sorted, bool Avx, class Visit>
     void walk(const Ray& r, Visit& visit, std::uint64_t& nodes_visited) const;
     // The ray, broadcast for the SSE slab test; near[a] names the box row the ray
@@ -242,8 +248,11 @@ class Bvh {
     // branches of a random ray through raylab-bench's random soup in them). Old and new
     // code alternated three times on section 2's rays: random rays through the soup 10 %
     // faster, through the icosphere 4 %, the other sets unchanged within the noise. With
-    // two hit children too, Cornell box camera rays were 4 % slower (their two-child case
-    // is predictable), so two keep their compare. Returns the number of hit children
+    // two hit children too, Cornell box camera rays were 4 % slower (in-process
+    // alternation; their two-child case is predictable), so two keep their compare.
+    // A hit child's t is never NaN (its slab test's ordered compare is false for NaN);
+    // the ranks need that: a NaN would share a place with another child and leave one
+    // unwritten. Returns the number of hit children
     template <class Entry>
     __attribute__((target("avx2,popcnt"))) int place_sorted_avx(const Node& node,
                                                                 const float t[kWidth],
@@ -253,6 +262,7 @@ class Bvh {
         int count = 0;
         for (int m = mask; m != 0; m &= m - 1) {
             const int k = __builtin_ctz(static_cast<unsigned>(m));
+            assert(!std::isnan(t[k]));
             const __m256 tk = _mm256_broadcast_ss(t + k);
             const int farther = _mm256_movemask_ps(_mm256_cmp_ps(all, tk, _CMP_GT_OQ));
             const int as_far = _mm256_movemask_ps(_mm256_cmp_ps(all, tk, _CMP_EQ_OQ));
@@ -389,7 +399,7 @@ void Bvh::walk(const Ray& r, Visit& visit, std::uint64_t& nodes_visited) const {
                 // Two: the farther waits on the stack (on a tie, the later one is taken
                 // first, as the sort below does); any hit: the first slot first. Marked
                 // likely: with place_sorted_avx inlined below, GCC otherwise laid the
-                // walk out so that Cornell box camera rays took 7 % longer (56.3
+                // walk out so that Cornell box camera rays took 8 % longer (56.3
                 // against 52.2 ns, five alternations); out of line, it cost the Cornell
                 // box's random rays 2.5 %
                 if (__builtin_expect((rest & (rest - 1)) == 0, 1)) {
