@@ -453,6 +453,8 @@ void run_scene_section(const BenchOptions& opt) {
             peer_description().c_str(), opt.width, opt.height, opt.repeats));
     const ModuleTable modules = ModuleTable::make(ModuleSelection::all(Impl::reference));
     Tables tables;
+    // The icosphere and the soup: a quarter of the other meshes' triangles
+    const int quarter = std::max(1000, opt.mesh_triangles / 4);
     // Each scene with its name in the tables and the stream of its random rays. Streams
     // from 600: section 1 takes 100-449 (its sparse sets one per distance from 400),
     // section 4 takes 500-506
@@ -463,11 +465,10 @@ void run_scene_section(const BenchOptions& opt) {
         std::uint64_t stream;
     } scenes[] = {
         {"cornell", cornell_box(), 600},
-        {"icosphere", icosphere(std::max(1000, opt.mesh_triangles / 4)), 605},
+        {"icosphere", icosphere(quarter), 605},
         {"displaced sphere", displaced_sphere(opt.mesh_triangles), 601},
         {"terrain", terrain(opt.mesh_triangles), 602},
-        {"random soup", random_soup(std::max(1000, opt.mesh_triangles / 4), soup_rng),
-         604},
+        {"random soup", random_soup(quarter, soup_rng), 604},
     };
     std::printf(
         "The scenes (bench/mesh.h generates the four meshes; camera rays through "

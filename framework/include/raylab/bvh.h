@@ -252,7 +252,10 @@ class Bvh {
     // alternation; their two-child case is predictable), so two keep their compare.
     // A hit child's t is never NaN (its slab test's ordered compare is false for NaN);
     // the ranks need that: a NaN would share a place with another child and leave one
-    // unwritten. Returns the number of hit children
+    // unwritten. Returns the number of hit children, counted as they are placed: the
+    // same as popcount(mask), but returning that instead changed GCC's registers in the
+    // inlined walk and cost Cornell box camera rays 3 % (51.7 against 50.0 ns, eight
+    // alternations)
     template <class Entry>
     __attribute__((target("avx2,popcnt"))) int place_sorted_avx(const Node& node,
                                                                 const float t[kWidth],
