@@ -67,12 +67,32 @@ double median_seconds(int repeats, Work&& work) {
 std::vector<double> interleaved_median_seconds(
     int repeats, const std::vector<std::function<void()>>& works);
 
+/// The same timing, kept round by round: seconds[w][k] is work w's time in round k.
+/// A round runs every work once, one after the other, so two works' times of the same
+/// round were taken a moment apart, under nearly the same load.
+struct RoundTimes {
+    std::vector<std::vector<double>> seconds;
+
+    /// Work w's median over the rounds, as interleaved_median_seconds returns it
+    double median_of(size_t w) const;
+    std::vector<double> medians() const;
+    /// seconds[num][k] / seconds[den][k] for each round k: a speed ratio of one round
+    /// (Embree's time over raylab's is raylab's speed over Embree's)
+    std::vector<double> ratios(size_t num, size_t den) const;
+};
+RoundTimes interleaved_seconds(int repeats,
+                               const std::vector<std::function<void()>>& works);
+
 /// A figure the run measured against the target an issue sets for it. The sections
 /// record them as they go; print_targets() closes the run with one table, so the targets
 /// table in docs/benchmarks.md comes from the same run as the tables above it.
 /// higher_is_better: the target is a lower bound (a speed ratio), else an upper bound.
+/// per_round: the same figure computed from each round's times alone (RoundTimes), for
+/// the table's "rounds met" and range columns; empty for a figure not timed in rounds
+/// (memory, a build timed apart from its peer's, a worst case over sets).
 void record_target(const std::string& what, double measured, double target,
-                   bool higher_is_better, const std::string& unit = "");
+                   bool higher_is_better, const std::string& unit = "",
+                   std::vector<double> per_round = {});
 /// Prints "## Targets" with every recorded figure, or nothing when none was recorded.
 void print_targets();
 

@@ -76,14 +76,15 @@ void speed_rows(const Scene& scene, const ModuleTable& modules, const PeerScene*
     std::vector<std::function<void()>> works{[&] { mine(scratch); }};
     std::vector<float> theirs;
     if (peer) works.push_back([&] { peer->closest_hit(rays, theirs); });
-    const std::vector<double> s = interleaved_median_seconds(repeats, works);
+    const RoundTimes rounds = interleaved_seconds(repeats, works);
+    const std::vector<double> s = rounds.medians();
     const double n = static_cast<double>(rays.size());
     // Issue 9's target for meshes of 80k to 1M triangles
     const size_t triangles = scene.triangles.size();
     if (peer && triangles >= 80000 && triangles <= 1000000)
         record_target(fmt("%zu triangles, %s rays, 1 thread: raylab / Embree", triangles,
                           name.c_str()),
-                      s[1] / s[0], 0.6, true);
+                      s[1] / s[0], 0.6, true, "", rounds.ratios(1, 0));
     tables.speed.row({fmt("%zu", triangles), name, "closest", fmt("%.0f", 1e9 * s[0] / n),
                       peer ? fmt("%.0f", 1e9 * s[1] / n) : "-",
                       peer ? fmt("%.3f", s[1] / s[0]) : "-",

@@ -192,14 +192,15 @@ void two_thread_row(const std::string& name, const Scene& scene,
     if (peer)
         works.push_back(
             [&] { on_threads(2, [&](int k) { peer_pass(*peer, parts[k], out[k]); }); });
-    const std::vector<double> s = interleaved_median_seconds(repeats, works);
+    const RoundTimes rounds = interleaved_seconds(repeats, works);
+    const std::vector<double> s = rounds.medians();
     const size_t n = q.rays.size();
     table.row({name, q.name, q.closest ? "closest" : "any", fmt("%zu", n),
                fmt("%.2f", mrays(n, s[0])), peer ? fmt("%.2f", mrays(n, s[1])) : "-",
                peer ? fmt("%.3f", s[1] / s[0]) : "-"});
     if (peer)
         record_target(name + ", " + q.name + " rays, 2 threads: raylab / Embree",
-                      s[1] / s[0], embree_target(name), true);
+                      s[1] / s[0], embree_target(name), true, "", rounds.ratios(1, 0));
 }
 
 // The camera rays reordered into blocks of 4 x 4 pixels, the order in which the
@@ -279,7 +280,8 @@ void packet_rows(const std::string& name, const Scene& scene, const ModuleTable&
                            [&](int k) { peer->closest_hit16(part[k], out[k][3]); });
             });
         }
-        const std::vector<double> s = interleaved_median_seconds(opt.repeats, works);
+        const RoundTimes rounds = interleaved_seconds(opt.repeats, works);
+        const std::vector<double> s = rounds.medians();
         const auto speed = [&](size_t k) {
             return k < s.size() ? fmt("%.2f", mrays(n, s[k])) : std::string("-");
         };
@@ -292,7 +294,8 @@ void packet_rows(const std::string& name, const Scene& scene, const ModuleTable&
             record_target(name + ", camera rays in packets, " + fmt("%d", threads) +
                               (threads == 1 ? " thread" : " threads") +
                               ": raylab packets / Embree rtcIntersect1",
-                          s[2] / s[1], embree_target(name), true);
+                          s[2] / s[1], embree_target(name), true, "",
+                          rounds.ratios(2, 1));
     }
 }
 
@@ -393,7 +396,8 @@ void bench_scene(const std::string& name, Scene& scene, const ModuleTable& modul
                 works.push_back(
                     [&, robust] { peer_pass(*peer[robust], q, theirs[robust]); });
         }
-        const std::vector<double> s = interleaved_median_seconds(opt.repeats, works);
+        const RoundTimes rounds = interleaved_seconds(opt.repeats, works);
+        const std::vector<double> s = rounds.medians();
         const double n = static_cast<double>(q.rays.size());
         std::vector<std::string> row{name,
                                      q.name,
@@ -411,7 +415,8 @@ void bench_scene(const std::string& name, Scene& scene, const ModuleTable& modul
             row.push_back(fmt("%.3f", theirs_s / s[0]));
             if (!robust)
                 record_target(name + ", " + q.name + " rays, 1 thread: raylab / Embree",
-                              theirs_s / s[0], embree_target(name), true);
+                              theirs_s / s[0], embree_target(name), true, "",
+                              rounds.ratios(2, 0));
             std::vector<std::string> a{name, q.name, robust ? "Embree robust" : "Embree"};
             for (std::string& cell : agreement_cells(q, mine, theirs[robust]))
                 a.push_back(std::move(cell));
