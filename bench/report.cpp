@@ -234,11 +234,12 @@ void print_targets() {
         "its ns/test over the float formulation's, on the worst ray set. measured "
         "is the figure of the tables above (from the medians of the rounds); rounds "
         "met counts the rounds whose own times give a figure that meets the target, "
-        "and range is the smallest and largest of those figures: a target met in "
+        "and per round gives those figures' median and, in brackets, the smallest "
+        "and largest (with one round, all three are the figure): a target met in "
         "some rounds and missed in others is on its line, and the machine's load "
         "decides the run; one missed in every round is not. - : not timed in rounds "
         "(memory; a build, timed apart from Embree's; a worst case over ray sets).");
-    Table table({"what", "measured", "target", "met", "rounds met", "range"});
+    Table table({"what", "measured", "target", "met", "rounds met", "per round"});
     for (const TargetRecord& r : target_records()) {
         const std::string bound = r.higher_is_better ? ">= " : "<= ";
         std::string rounds = "-", range = "-";
@@ -248,7 +249,8 @@ void print_targets() {
             const auto [lo, hi] =
                 std::minmax_element(r.per_round.begin(), r.per_round.end());
             rounds = fmt("%td of %zu", met, r.per_round.size());
-            range = fmt("%.3g", *lo) + " - " + fmt("%.3g", *hi) + r.unit;
+            range = fmt("%.3g", median(r.per_round)) + r.unit + " (" + fmt("%.3g", *lo) +
+                    " - " + fmt("%.3g", *hi) + ")";
         }
         table.row(
             {r.what, fmt("%.3g", r.measured) + r.unit,

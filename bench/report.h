@@ -88,8 +88,8 @@ RoundTimes interleaved_seconds(int repeats,
 /// table in docs/benchmarks.md comes from the same run as the tables above it.
 /// higher_is_better: the target is a lower bound (a speed ratio), else an upper bound.
 /// per_round: the same figure computed from each round's times alone (RoundTimes), for
-/// the table's "rounds met" and range columns; empty for a figure not timed in rounds
-/// (memory, a build timed apart from its peer's, a worst case over sets).
+/// the table's "rounds met" and "per round" columns; empty for a figure not timed in
+/// rounds (memory, a build timed apart from its peer's, a worst case over sets).
 void record_target(const std::string& what, double measured, double target,
                    bool higher_is_better, const std::string& unit = "",
                    std::vector<double> per_round = {});

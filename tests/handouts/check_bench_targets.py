@@ -4,12 +4,13 @@
   check_bench_targets.py [--skip-if-untimed] BENCH ARGS...
 
 Runs BENCH with ARGS (which must include --repeats N) and reads the Targets table at the
-end of its output: | what | measured | target | met | rounds met | range |. For every row
-timed in rounds (rounds met is not "-"):
+end of its output: | what | measured | target | met | rounds met | per round |. For every
+row timed in rounds (rounds met is not "-"):
 - rounds met is "k of N", 0 <= k <= N, N the run's --repeats;
-- range is "lo - hi" (the unit after hi, as measured has it), lo <= hi, no NaN;
-- with N = 1, the one round is the median: lo = hi = measured, and met is "yes" exactly
-  when k is 1 (a per-round figure taken the wrong way round, Embree's speed over
+- per round is "median (lo - hi)", the unit after the median as measured has it,
+  lo <= median <= hi, no NaN;
+- with N = 1, the one round is the median: lo = median = hi = measured, and met is "yes"
+  exactly when k is 1 (a per-round figure taken the wrong way round, Embree's speed over
   raylab's, or another work's time, breaks one of these).
 At least one row must be timed in rounds: the Cornell box's frame at 640x480 on two
 threads is (ARGS --sections render --size 640x480 --threads 2); section 2's ratios to
@@ -45,31 +46,33 @@ def main():
         return 1
     table = [l for l in lines[lines.index("## Targets") :] if l.startswith("|")]
     header, rows = cells(table[0]), [cells(l) for l in table[2:]]
-    if header != ["what", "measured", "target", "met", "rounds met", "range"]:
+    if header != ["what", "measured", "target", "met", "rounds met", "per round"]:
         print(f"Targets header is {header}")
         return 1
     problems, timed = [], 0
     for what, measured, target, met, rounds, span in rows:
         if rounds == "-":
             if span != "-":
-                problems.append(f"{what}: range {span!r} without rounds")
+                problems.append(f"{what}: per round {span!r} without rounds")
             continue
         timed += 1
         m = re.fullmatch(r"([0-9]+) of ([0-9]+)", rounds)
-        r = re.fullmatch(NUMBER + r" - " + NUMBER + r"(.*)", span)
+        r = re.fullmatch(NUMBER + r"(.*) \(" + NUMBER + r" - " + NUMBER + r"\)", span)
         v = re.fullmatch(NUMBER + r"(.*)", measured)
         if not (m and r and v):
-            problems.append(f"{what}: rounds {rounds!r}, range {span!r}, measured {measured!r}")
+            problems.append(f"{what}: rounds {rounds!r}, per round {span!r}, "
+                            f"measured {measured!r}")
             continue
         k, n = int(m.group(1)), int(m.group(2))
-        lo, hi, unit = r.group(1), r.group(2), r.group(3)
+        mid, unit, lo, hi = r.group(1), r.group(2), r.group(3), r.group(4)
         if n != repeats or not 0 <= k <= n:
             problems.append(f"{what}: {rounds} with --repeats {repeats}")
-        if "nan" in (lo, hi) or float(lo) > float(hi) or unit != v.group(2):
-            problems.append(f"{what}: range {span!r} (measured {measured!r})")
-        if n == 1 and not (lo == hi == v.group(1) and (met == "yes") == (k == 1)):
+        if "nan" in (lo, mid, hi) or not float(lo) <= float(mid) <= float(hi) \
+                or unit != v.group(2):
+            problems.append(f"{what}: per round {span!r} (measured {measured!r})")
+        if n == 1 and not (lo == mid == hi == v.group(1) and (met == "yes") == (k == 1)):
             problems.append(f"{what}: one round, but measured {measured}, met {met}, "
-                            f"rounds met {rounds}, range {span}")
+                            f"rounds met {rounds}, per round {span}")
     if timed == 0 and not problems and skip_if_untimed:
         print("no Targets row timed in rounds (no Embree peer): skipped")
         return 77
