@@ -106,14 +106,10 @@ RoundTimes interleaved_seconds(int repeats,
     return t;
 }
 
-double RoundTimes::median_of(size_t w) const {
-    return median(seconds.at(w));
-}
-
 std::vector<double> RoundTimes::medians() const {
     std::vector<double> out;
-    for (size_t w = 0; w < seconds.size(); ++w)
-        out.push_back(median_of(w));
+    for (const std::vector<double>& work : seconds)
+        out.push_back(median(work));
     return out;
 }
 
@@ -242,21 +238,21 @@ void print_targets() {
     Table table({"what", "measured", "target", "met", "rounds met", "per round"});
     for (const TargetRecord& r : target_records()) {
         const std::string bound = r.higher_is_better ? ">= " : "<= ";
-        std::string rounds = "-", range = "-";
+        std::string rounds = "-", spread = "-";
         if (!r.per_round.empty()) {
             const auto met = std::count_if(r.per_round.begin(), r.per_round.end(),
                                            [&](double v) { return r.meets(v); });
             const auto [lo, hi] =
                 std::minmax_element(r.per_round.begin(), r.per_round.end());
             rounds = fmt("%td of %zu", met, r.per_round.size());
-            range = fmt("%.3g", median(r.per_round)) + r.unit + " (" + fmt("%.3g", *lo) +
-                    " - " + fmt("%.3g", *hi) + ")";
+            spread = fmt("%.3g", median(r.per_round)) + r.unit + " (" + fmt("%.3g", *lo) +
+                     " - " + fmt("%.3g", *hi) + ")";
         }
         table.row(
             {r.what, fmt("%.3g", r.measured) + r.unit,
              bound + fmt("%g", r.target) + r.unit,
              std::isnan(r.measured) ? "-" : (r.meets(r.measured) ? "yes" : "**no**"),
-             rounds, range});
+             rounds, spread});
     }
     table.print();
 }

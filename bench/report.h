@@ -73,8 +73,7 @@ std::vector<double> interleaved_median_seconds(
 struct RoundTimes {
     std::vector<std::vector<double>> seconds;
 
-    /// Work w's median over the rounds, as interleaved_median_seconds returns it
-    double median_of(size_t w) const;
+    /// Each work's median over the rounds, as interleaved_median_seconds returns them
     std::vector<double> medians() const;
     /// seconds[num][k] / seconds[den][k] for each round k: a speed ratio of one round
     /// (Embree's time over raylab's is raylab's speed over Embree's)
