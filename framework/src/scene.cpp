@@ -3,7 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <utility>
+
+#include <glm/gtc/type_ptr.hpp>
 
 #include "raylab/engine.h"
 #include "raylab/error.h"
@@ -40,7 +44,14 @@ Aabb triangle_box(const SceneTriangle& t) {
 // Completes a primitive's hit: material, and a shading normal facing the ray
 void finish(Hit& hit, const Ray& r, int material, const Vec3& shading_normal) {
     hit.material = material;
-    hit.ns = glm::dot(shading_normal, r.w) > 0.0f ? -shading_normal : shading_normal;
+    // The sign bits flipped or not, without a branch between -n and n: random rays meet
+    // both sides of the Cornell box's walls
+    const std::uint32_t flip = std::uint32_t{glm::dot(shading_normal, r.w) > 0.0f} << 31;
+    std::uint32_t bits[3];
+    std::memcpy(bits, glm::value_ptr(shading_normal), sizeof bits);
+    for (std::uint32_t& b : bits)
+        b ^= flip;
+    std::memcpy(glm::value_ptr(hit.ns), bits, sizeof bits);
 }
 
 // The hit recomputed in double on the primitive it lies on (raylab/refine.h, issue 8

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <string>
 
 #include "raylab/engine.h"
 #include "raylab/renderer.h"
@@ -275,6 +276,28 @@ TEST_SUITE("engine") {
         REQUIRE(a.kind == PrimRef::Kind::triangle);
         CHECK(a.refined);
         CHECK(hit.position.z == 0.0f);
+        // The same wall on each axis: the shared coordinate is set on x, y and z alike
+        // (a review's mutation that left x and y as o + t w passed the z case alone)
+        for (int axis = 0; axis < 3; ++axis) {
+            INFO("wall at " << std::string(1, "xyz"[axis]) << " = 0");
+            // v with its z moved to the axis (a rotation of the components)
+            const auto on = [axis](Vec3 v) {
+                return axis == 2   ? v
+                       : axis == 1 ? Vec3(v.y, v.z, v.x)
+                                   : Vec3(v.z, v.x, v.y);
+            };
+            Scene wall;
+            wall.materials.push_back(Material{});
+            wall.triangles.push_back(
+                {on(Vec3(-1, -1, 0)), on(Vec3(1, -1, 0)), on(Vec3(0, 1, 0))});
+            wall.commit();
+            const Ray ray{on(near.o), on(near.w), 0.0f, kInfinity};
+            PrimRef ref;
+            engine->closest_hit(wall, ray, c, hit, ref);
+            REQUIRE(ref.kind == PrimRef::Kind::triangle);
+            CHECK(ref.refined);
+            CHECK(hit.position[axis] == 0.0f);
+        }
         const Vec3 o(3e3f, 4e3f, 1e4f);
         const Ray far{o, glm::normalize(Vec3(0.1f, 0.05f, 0.0f) - o), 0.0f, kInfinity};
         engine->closest_hit(scene, far, c, hit, b);

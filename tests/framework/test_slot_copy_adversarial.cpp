@@ -216,8 +216,9 @@ struct Recorder {
     }
 };
 
-Walk sse_walk(const Bvh& bvh, const std::vector<Ray>& rays, bool sorted,
-              Visits mode = Visits::three) {
+// (unused where the AVX walk it is compared with is not compiled: RAYLAB_NO_SIMD)
+[[maybe_unused]] Walk sse_walk(const Bvh& bvh, const std::vector<Ray>& rays, bool sorted,
+                               Visits mode = Visits::three) {
     Walk w;
     for (const Ray& r : rays) {
         Recorder visit{w, mode};
