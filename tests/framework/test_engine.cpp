@@ -277,7 +277,7 @@ TEST_SUITE("engine") {
         CHECK(a.refined);
         CHECK(hit.position.z == 0.0f);
         // The same wall on each axis: the shared coordinate is set on x, y and z alike
-        // (a review's mutation that left x and y as o + t w passed the z case alone)
+        // (a mutation that left x and y as o + t w passed the z case alone)
         for (int axis = 0; axis < 3; ++axis) {
             INFO("wall at " << std::string(1, "xyz"[axis]) << " = 0");
             // v with its z moved to the axis (a rotation of the components)
