@@ -233,10 +233,12 @@ inline void snap_shared_coordinates(const SceneTriangle& tri, DVec3& at) {
     _mm_storeu_pd(p, _mm_or_pd(_mm_and_pd(mxy, vxy), _mm_andnot_pd(mxy, axy)));
     _mm_store_sd(p + 2, _mm_or_pd(_mm_and_pd(mz, vz), _mm_andnot_pd(mz, az)));
 #else
+    const float *v0 = glm::value_ptr(tri.v0), *v1 = glm::value_ptr(tri.v1),
+                *v2 = glm::value_ptr(tri.v2);
     for (int a = 0; a < 3; ++a) {
-        const bool shared = (tri.v0[a] == tri.v1[a]) & (tri.v0[a] == tri.v2[a]);
+        const bool shared = (v0[a] == v1[a]) & (v0[a] == v2[a]);
         std::uint64_t v, old;
-        const double va = tri.v0[a];
+        const double va = v0[a];
         std::memcpy(&v, &va, sizeof v);
         std::memcpy(&old, p + a, sizeof old);
         const std::uint64_t mask = 0 - std::uint64_t{shared},

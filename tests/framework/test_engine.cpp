@@ -260,7 +260,7 @@ TEST_SUITE("engine") {
     TEST_CASE("the engine refines a triangle hit itself only when its bound allows") {
         // A camera ray of the Cornell box: t's error bound is far below 2^-30 of the
         // point, so the engine sets the point, with the wall's shared coordinate exact
-        // (o + t w alone leaves z about 1e-17 off 0).
+        // (o + t w alone leaves z 2^-51 off 0).
         // From 1e4 away the bound grows with the distance: the scene refines instead
         const GeometryEngine* engine = engine_table().engine;
         Scene scene;
