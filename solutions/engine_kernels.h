@@ -6,8 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstdint>
-#include <cstring>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -226,24 +224,23 @@ inline void snap_shared_coordinates(const SceneTriangle& tri, DVec3& at) {
     const __m128 same =
         _mm_and_ps(_mm_cmpeq_ps(v0, _mm_loadu_ps(glm::value_ptr(tri.v1))),
                    _mm_cmpeq_ps(v0, _mm_loadu_ps(glm::value_ptr(tri.v2))));
+    // x and y: the masks of lanes 0 and 1 widened to 64 bits; z: lane 2's
     const __m128d mxy = _mm_castps_pd(_mm_unpacklo_ps(same, same));
     const __m128d mz = _mm_castps_pd(_mm_unpackhi_ps(same, same));
     const __m128d vxy = _mm_cvtps_pd(v0), vz = _mm_cvtps_pd(_mm_movehl_ps(v0, v0));
     const __m128d axy = _mm_loadu_pd(p), az = _mm_load_sd(p + 2);
-    _mm_storeu_pd(p, _mm_or_pd(_mm_and_pd(mxy, vxy), _mm_andnot_pd(mxy, axy)));
-    _mm_store_sd(p + 2, _mm_or_pd(_mm_and_pd(mz, vz), _mm_andnot_pd(mz, az)));
+    // mask ? a : b, lane by lane
+    const auto select = [](__m128d mask, __m128d a, __m128d b) {
+        return _mm_or_pd(_mm_and_pd(mask, a), _mm_andnot_pd(mask, b));
+    };
+    _mm_storeu_pd(p, select(mxy, vxy, axy));
+    _mm_store_sd(p + 2, select(mz, vz, az));
 #else
+    // The scalar twin needs only the same results, not the absence of a branch
     const float *v0 = glm::value_ptr(tri.v0), *v1 = glm::value_ptr(tri.v1),
                 *v2 = glm::value_ptr(tri.v2);
     for (int a = 0; a < 3; ++a) {
-        const bool shared = (v0[a] == v1[a]) & (v0[a] == v2[a]);
-        std::uint64_t v, old;
-        const double va = v0[a];
-        std::memcpy(&v, &va, sizeof v);
-        std::memcpy(&old, p + a, sizeof old);
-        const std::uint64_t mask = 0 - std::uint64_t{shared},
-                            r = (v & mask) | (old & ~mask);
-        std::memcpy(p + a, &r, sizeof r);
+        if (v0[a] == v1[a] && v0[a] == v2[a]) p[a] = v0[a];
     }
 #endif
 }
