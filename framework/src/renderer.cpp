@@ -92,7 +92,9 @@ class PixelShader {
     void forget_blocker() { occluder_.forget_blocker(); }
 
     // The next tile's kept camera hits (CameraHits): reuse them in order, or keep them
-    void begin_tile(std::vector<CameraHits::Sample>* hits, bool reuse, bool keep) {
+    void begin_tile(std::vector<CameraHits::Sample>* hits, bool reuse, bool keep,
+                    size_t pixels) {
+        if (keep) hits->reserve(pixels);
         tile_hits_ = hits;
         source_ = hits;
         cursor_ = 0;
@@ -145,10 +147,19 @@ class PixelShader {
         reuse_ = true;
     }
 
-    // After the tile's pixel loop: did it take every ray traced ahead, in order?
+    // After the tile's pixel loop: did it take every ray traced ahead, in order? The
+    // samples it took in order are the ones to keep: all of them change places with the
+    // tile's kept array (no copy, and the array's memory goes round for the next tile)
     void end_tile() {
         if (source_ != &ahead_) return;
         if (cursor_ != ahead_.size()) ahead_off_ = true;
+        if (keep_ && reuse_) {
+            if (cursor_ == ahead_.size()) {
+                tile_hits_->swap(ahead_);
+            } else {
+                keep_taken_ahead();
+            }
+        }
         source_ = tile_hits_;
         reuse_ = false;
     }
@@ -165,7 +176,10 @@ class PixelShader {
         const std::optional<Hit> hit =
             kept ? kept->hit : cast_camera_ray(uv, ray, traced);
         if (kept) traced = kept->traced;  // (the ray is not kept: shading needs the hit)
-        if (keep_) tile_hits_->push_back({uv, traced, hit});
+        // A sample taken from those traced ahead is kept at end_tile (or when the pixel
+        // loop leaves their order), all at once
+        if (keep_ && !(kept && source_ == &ahead_))
+            tile_hits_->push_back({uv, traced, hit});
         if (!traced) return settings_.background;
         if (ray_out) *ray_out = ray;
         if (hit_out) *hit_out = hit;
@@ -192,8 +206,15 @@ class PixelShader {
             if (last_frame_) ++counters_.camera_rays_reused;
             return &(*source_)[cursor_++];
         }
+        if (reuse_ && keep_ && source_ == &ahead_) keep_taken_ahead();
         reuse_ = false;
         return nullptr;
+    }
+
+    // Keeps the samples traced ahead that the pixel loop has taken in order so far
+    void keep_taken_ahead() {
+        tile_hits_->insert(tile_hits_->end(), ahead_.begin(),
+                           ahead_.begin() + static_cast<std::ptrdiff_t>(cursor_));
     }
 
     // The camera module's ray through uv, its w normalised (the framework boundary,
@@ -356,16 +377,19 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
                                   scene.triangles.size()};
     const std::vector<const void*> hit_modules =
         kept ? camera_hit_modules(modules, scene) : std::vector<const void*>{};
-    bool reuse = false;
+    bool reuse = false, keep = false;
     if (kept) {
-        reuse = kept->valid && kept->width == settings.width &&
-                kept->height == settings.height && kept->view == view &&
-                std::equal(primitives, primitives + 3, kept->primitives) &&
-                kept->modules == hit_modules &&
+        const bool same_key = kept->keyed && kept->width == settings.width &&
+                              kept->height == settings.height && kept->view == view &&
+                              std::equal(primitives, primitives + 3, kept->primitives) &&
+                              kept->modules == hit_modules;
+        reuse = same_key && kept->valid &&
                 kept->tiles.size() == static_cast<size_t>(tile_count);
         if (!reuse) {
+            // Fill the hits only when the last frame had this key (CameraHits)
+            keep = same_key;
             kept->clear();
-            kept->tiles.resize(static_cast<size_t>(tile_count));
+            if (keep) kept->tiles.resize(static_cast<size_t>(tile_count));
         }
     }
     // One pass over all tiles on all threads; pass(tile, radiance, shader) renders a tile
@@ -386,7 +410,10 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
                     const int y0 = (t / tiles_x) * kTileSize;
                     const Tile tile{x0, y0, std::min(x0 + kTileSize, settings.width),
                                     std::min(y0 + kTileSize, settings.height)};
-                    if (kept) shader.begin_tile(&kept->tiles[size_t(t)], reuse, !reuse);
+                    if (reuse || keep)
+                        shader.begin_tile(
+                            &kept->tiles[size_t(t)], reuse, keep,
+                            size_t(tile.x1 - tile.x0) * (tile.y1 - tile.y0));
                     // Each tile starts without a shadow hint: which thread had the tile
                     // before must not change its work counts
                     shader.forget_blocker();
@@ -435,7 +462,8 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
         if (stats.cancelled) {
             kept->clear();  // some tiles were never rendered
         } else {
-            kept->valid = true;
+            kept->valid = keep;
+            kept->keyed = true;
             kept->width = settings.width;
             kept->height = settings.height;
             kept->view = view;

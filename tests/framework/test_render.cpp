@@ -254,7 +254,14 @@ TEST_SUITE("render") {
         CameraHits kept;
         settings.camera_hits = &kept;
         Image first, image, fresh;
+        // A first frame notes its key and keeps no hit; the next of the same key keeps
+        // them (both cast every camera ray)
         FrameStats s = render(scene, scene.view, settings, modules, first);
+        CHECK(s.camera_rays == pixels);
+        CHECK(s.camera_rays_reused == 0);
+        CHECK(kept.keyed);
+        CHECK_FALSE(kept.valid);
+        s = render(scene, scene.view, settings, modules, first);
         CHECK(s.camera_rays == pixels);
         CHECK(s.camera_rays_reused == 0);
         REQUIRE(kept.valid);
@@ -277,12 +284,18 @@ TEST_SUITE("render") {
         }
         CHECK(image.pixels != first.pixels);  // the light did move
 
-        // The view, the size, a module that makes hits, the geometry's counts: cast again
+        // The view, the size, a module that makes hits, the geometry's counts: a new key,
+        // cast again. A new key's first frame keeps nothing (a camera that moves every
+        // frame would never reuse it); its second keeps, and the third reuses
         View moved = scene.view;
         moved.eye.x += 0.01f;
         s = render(scene, moved, settings, modules, image);
         CHECK(s.camera_rays == pixels);
         CHECK(s.camera_rays_reused == 0);
+        CHECK_FALSE(kept.valid);
+        s = render(scene, moved, settings, modules, image);
+        CHECK(s.camera_rays == pixels);
+        CHECK(kept.valid);
         s = render(scene, moved, settings, modules, image);
         CHECK(s.camera_rays_reused == pixels);
         // The module path gives the engine's hits bit for bit: kept hits serve it
@@ -296,21 +309,25 @@ TEST_SUITE("render") {
         other.intersect_triangle = &other_triangle;
         s = render(scene, moved, settings, other, image);
         CHECK(s.camera_rays == pixels);
+        render(scene, moved, settings, other, image);  // keeps for other
         other.intersect_sphere = &other_sphere;
         s = render(scene, moved, settings, other, image);
         CHECK(s.camera_rays_reused == pixels);
         settings.width = 63;
         s = render(scene, moved, settings, other, image);
         CHECK(s.camera_rays == 63 * 48);
+        render(scene, moved, settings, other, image);  // keeps for other at 63 x 48
         scene.spheres.push_back({Sphere{Vec3(0.0f), 0.3f}, 0});
         scene.commit();
         s = render(scene, moved, settings, module_path, image);
         CHECK(s.camera_rays == 63 * 48);
+        render(scene, moved, settings, module_path, image);  // keeps with the sphere
         ModuleTable other_sphere_only = module_path;  // the sphere module counts now
         other_sphere_only.intersect_sphere = &other_sphere;
         s = render(scene, moved, settings, other_sphere_only, image);
         CHECK(s.camera_rays == 63 * 48);
-        render(scene, moved, settings, module_path, image);  // kept for module_path again
+        render(scene, moved, settings, module_path, image);  // module_path's key again
+        render(scene, moved, settings, module_path, image);  // and its hits kept
         plain = settings;
         plain.camera_hits = nullptr;
         render(scene, moved, plain, module_path, fresh);
@@ -374,6 +391,8 @@ TEST_SUITE("render") {
         settings.camera_hits = &kept;
         Image image, fresh;
         render(scene, scene.view, settings, modules, image);
+        render(scene, scene.view, settings, modules, image);  // the second keeps the hits
+        REQUIRE(kept.valid);
         backwards = true;
         const FrameStats s = render(scene, scene.view, settings, modules, image);
         backwards = false;
@@ -382,5 +401,81 @@ TEST_SUITE("render") {
         settings.camera_hits = nullptr;
         render(scene, scene.view, settings, modules, fresh);
         CHECK(image.pixels == fresh.pixels);
+    }
+
+    // The frame that keeps the hits traces a tile's camera rays ahead in packets and
+    // keeps those its pixel loop takes in order all at once (at the tile's end, or where
+    // the loop leaves their order). Pixel loops that leave it, stop early or ask again:
+    // the next frame takes every point the loop asks for from the kept hits, in the
+    // loop's order, and gives a fresh render's image
+    TEST_CASE(
+        "kept camera hits hold every point the pixel loop asked for, in its order") {
+        enum class Order { forward, half_backwards, skip_last, again };
+        static Order order = Order::forward;
+        static const ModuleTable* table = nullptr;
+        static std::atomic<std::uint64_t> calls{0};  // (two threads render tiles)
+        struct Loop {
+            static void render_tile(const Tile& tile, const PixelRadiance& radiance,
+                                    const ImageView& image) {
+                const auto shade = [&](int i, int j) {
+                    ++calls;
+                    image.set(i, j,
+                              radiance(table->image_plane_point(i, j, image.width,
+                                                                image.height)));
+                };
+                const int w = tile.x1 - tile.x0, h = tile.y1 - tile.y0;
+                for (int y = 0; y < h; ++y) {
+                    for (int x = 0; x < w; ++x) {
+                        // half_backwards: the tile's lower half right to left
+                        const bool back = order == Order::half_backwards && 2 * y >= h;
+                        if (order == Order::skip_last && y == h - 1 && x == w - 1)
+                            continue;
+                        shade(tile.x0 + (back ? w - 1 - x : x), tile.y0 + y);
+                    }
+                }
+                if (order == Order::again) shade(tile.x0, tile.y0);
+            }
+        };
+        const Scene scene = cornell_box();
+        ModuleTable modules = reference_modules();
+        modules.render_tile = &Loop::render_tile;
+        table = &modules;
+        REQUIRE(scene.traces_packets(modules));
+        for (const Order o :
+             {Order::forward, Order::half_backwards, Order::skip_last, Order::again}) {
+            CAPTURE(static_cast<int>(o));
+            order = o;
+            RenderSettings settings;
+            settings.width = 40;  // tiles of the full size and narrower ones
+            settings.height = 24;
+            CameraHits kept;
+            settings.camera_hits = &kept;
+            Image image, fresh;
+            render(scene, scene.view, settings, modules, image);  // notes the key
+            calls = 0;
+            FrameStats s = render(scene, scene.view, settings, modules, image);
+            const std::uint64_t asked = calls;
+            CHECK(s.camera_rays_reused == 0);
+            CHECK(s.camera_rays_in_packets > 0);  // the kept frame traced ahead
+            REQUIRE(kept.valid);
+            calls = 0;
+            s = render(scene, scene.view, settings, modules, image);
+            CHECK(calls == asked);
+            CHECK(s.camera_rays == 0);
+            CHECK(s.camera_rays_reused == asked);
+            settings.camera_hits = nullptr;
+            render(scene, scene.view, settings, modules, fresh);
+            CHECK(image.pixels == fresh.pixels);
+            // And again from a CameraHits cleared after a frame (its arrays' memory kept)
+            kept.clear();
+            settings.camera_hits = &kept;
+            s = render(scene, scene.view, settings, modules, image);
+            CHECK(s.camera_rays_reused == 0);
+            s = render(scene, scene.view, settings, modules, image);
+            CHECK(s.camera_rays_reused == 0);
+            s = render(scene, scene.view, settings, modules, image);
+            CHECK(s.camera_rays_reused == asked);
+            CHECK(image.pixels == fresh.pixels);
+        }
     }
 }
