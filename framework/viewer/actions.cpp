@@ -257,6 +257,9 @@ bool take_result(Viewer& v) {
                   : "rendered " + what + " in " +
                         fmt("%.2f ms on %.0f threads: %.2f Mrays/s", st.milliseconds,
                             st.threads, st.rays_per_second() * 1e-6);
+    if (!r->reused && st.camera_rays_reused > 0) {
+        line += fmt("; camera hits reused: %.0f", double(st.camera_rays_reused));
+    }
     if (f.difference) {
         line += fmt("; vs reference: RMSE %.3g, max error %.3g", f.difference->rmse,
                     f.difference->max_error);

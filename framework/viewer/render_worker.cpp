@@ -234,8 +234,11 @@ void RenderWorker::render_full(const RenderJob& job, RenderSettings settings,
     std::vector<std::uint16_t> samples;
     if (job.show_samples) settings.samples_map = &samples;
     // A change after the hit (a light, ambient, shadows, shading) shades the camera hits
-    // of the last full frame instead of casting them again (the renderer checks the rest)
+    // of the last full frame instead of casting them again (the renderer checks the
+    // rest). A job that must render (--repeat) casts them afresh: its time is a full
+    // frame's
     settings.camera_hits = &camera_hits_;
+    if (!job.reuse) camera_hits_.clear();
     auto image = std::make_shared<Image>();
     result.stats = render(scene_, job.view, settings, modules, *image);
     if (result.stats.cancelled) return;

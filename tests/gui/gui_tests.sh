@@ -17,8 +17,9 @@
 #   debug-view   the 3D debug view draws the scene and the pinned pixel's rays
 #   skip         shadows off, then on again: the second is the kept first frame (no
 #                render); an exposure drag tone-maps again and renders nothing
-#   repeat       --repeat 3 renders the same full frame three times (the kept frame
-#                does not answer) and logs the medians; the image is raylab-render's
+#   repeat       --repeat 3 renders the same full frame three times (neither the kept
+#                frame nor its camera hits answer) and logs the medians; the image is
+#                raylab-render's
 #   no-display   without DISPLAY: exit code 2 and a one-line message, no crash
 # Exit 77 (ctest: skipped) when xvfb-run or xdotool is missing.
 set -u
@@ -202,11 +203,16 @@ repeat)
     "$render" "${flags[@]}" --output render.png > render.txt ||
         fail "raylab-render failed"
     xvfb "$viewer" "${flags[@]}" --repeat 3 --frames 1 --save-image saved.png \
-        > out.txt 2>&1 || { cat out.txt; fail "the viewer failed"; }
+        --report report > out.txt 2>&1 || { cat out.txt; fail "the viewer failed"; }
     cat out.txt
     [ "$(grep -c '^rendered 320x240' out.txt)" = 3 ] ||
         fail "not three renders of the frame"
     ! grep -q '^reused' out.txt || fail "--repeat reused a kept frame"
+    # Each a full render, as raylab-render's: every camera ray cast again, none of the
+    # last frame's camera hits shaded again (the viewer did that until 2026-11-26)
+    ! grep -q 'camera hits reused' out.txt || fail "--repeat reused the camera hits"
+    grep -q '^rays: 76800 camera ([0-9]* in packets, 0 more reused)' report/settings.txt ||
+        fail "the last frame did not cast all 76800 camera rays: $(grep '^rays' report/settings.txt)"
     grep -q -- '--repeat: 3 full frames, render time median [0-9.]* ms, change to screen' \
         out.txt || fail "no --repeat medians in the log"
     "$png_diff" saved.png render.png --tolerance 0 ||

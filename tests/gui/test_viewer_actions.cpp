@@ -431,14 +431,28 @@ TEST_SUITE("viewer") {
         CHECK(h.v.frames.full->pixels == first.pixels);
         CHECK(h.v.frames.tiles_total == 3 * 3);  // 48x36 in 16x16 tiles
         CHECK(h.v.frames.tiles_changed == 0);
+        // and a full frame's work: every camera ray cast, none of the kept hits shaded
+        CHECK(h.v.frames.last_full.camera_rays == 48 * 36);
+        CHECK(h.v.frames.last_full.camera_rays_reused == 0);
 
-        // A light moved: the frame changes, and the statistics count changed tiles
+        // A light moved: the frame changes, and the statistics count changed tiles. The
+        // frame before had the same camera, so this one keeps its camera hits
+        // (CameraHits)
         h.v.state.scene.lights[0].p.x += 0.2f;
         h.v.state.dirty = true;
         h.render();
         CHECK(h.v.frames.frames_rendered == 4);
         CHECK(h.v.frames.tiles_changed > 0);
         CHECK(h.v.frames.tiles_changed <= 9);
+        CHECK(h.v.frames.last_full.camera_rays == 48 * 36);
+        // and the next light move shades them again, casting no camera ray, and says so
+        h.v.state.scene.lights[0].p.x += 0.2f;
+        h.v.state.dirty = true;
+        h.render();
+        CHECK(h.v.frames.frames_rendered == 5);
+        CHECK(h.v.frames.last_full.camera_rays == 0);
+        CHECK(h.v.frames.last_full.camera_rays_reused == 48 * 36);
+        CHECK(h.v.log.text().find("camera hits reused: 1728") != std::string::npos);
     }
 
     TEST_CASE("compare turned on reuses the frame and renders only the reference" *
