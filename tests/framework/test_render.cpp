@@ -341,7 +341,7 @@ TEST_SUITE("render") {
         CHECK(s.camera_rays_reused == 0);
         CHECK(kept.valid);
 
-        // Nor do frames above CameraHits::kMaxPixels (72 bytes a pixel)
+        // Nor do frames above CameraHits::kMaxPixels (68 bytes a pixel)
         const Scene floor = lit_plane(Vec3(0.0f, 2.0f, 0.0f), Vec3(1.0f));
         RenderSettings big;
         big.width = 1025;

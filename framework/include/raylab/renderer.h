@@ -61,7 +61,7 @@ inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 26;
 /// a frame about 8 % (21 MB written at 640x480), which only a frame that reuses them
 /// repays. Modules are taken to be functions of their arguments (the contract). The owner
 /// calls clear() when the scene's geometry changes in place. One sample per pixel and at
-/// most kMaxPixels pixels (72 bytes each): larger or supersampled frames neither fill nor
+/// most kMaxPixels pixels (68 bytes each): larger or supersampled frames neither fill nor
 /// use it.
 struct CameraHits {
     static constexpr std::int64_t kMaxPixels = std::int64_t{1} << 20;  // 1280 x 800
