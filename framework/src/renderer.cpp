@@ -71,7 +71,13 @@ struct alignas(64) Counters {  // one cache line each: no false sharing
     std::uint64_t shadow_rays = 0;
     std::uint64_t backfacing = 0;
     std::uint64_t disabled = 0;
+    bool hits_overflow = false;  // the pixel loop asked more than kKeptPerPixel per pixel
 };
+
+// A tile keeps at most this many camera samples per pixel (CameraHits): a pixel loop that
+// asks more (a student's supersampling in module 01) keeps none in that frame, instead of
+// 68 bytes a call (1.1 GB at 16 a pixel in 1280 x 800)
+constexpr size_t kKeptPerPixel = 2;
 
 // The framework's per-pixel work, given to the pixel loop as PixelRadiance
 class PixelShader {
@@ -95,6 +101,7 @@ class PixelShader {
     void begin_tile(std::vector<CameraHits::Sample>* hits, bool reuse, bool keep,
                     size_t pixels) {
         if (keep) hits->reserve(pixels);
+        keep_limit_ = kKeptPerPixel * pixels;
         tile_hits_ = hits;
         source_ = hits;
         cursor_ = 0;
@@ -178,8 +185,14 @@ class PixelShader {
         if (kept) traced = kept->traced;  // (the ray is not kept: shading needs the hit)
         // A sample taken from those traced ahead is kept at end_tile (or when the pixel
         // loop leaves their order), all at once
-        if (keep_ && !(kept && source_ == &ahead_))
-            tile_hits_->push_back({uv, traced, hit});
+        if (keep_ && !(kept && source_ == &ahead_)) {
+            if (tile_hits_->size() < keep_limit_) {
+                tile_hits_->push_back({uv, traced, hit});
+            } else {
+                keep_ = false;  // this frame keeps nothing (render() sees the flag)
+                counters_.hits_overflow = true;
+            }
+        }
         if (!traced) return settings_.background;
         if (ray_out) *ray_out = ray;
         if (hit_out) *hit_out = hit;
@@ -203,7 +216,8 @@ class PixelShader {
     // same order; nullptr once out of step (the rest of the tile is cast)
     const CameraHits::Sample* kept_sample(const Vec2& uv) {
         if (reuse_ && cursor_ < source_->size() && (*source_)[cursor_].uv == uv) {
-            if (last_frame_) ++counters_.camera_rays_reused;
+            // (a point whose camera ray was not valid was not a ray)
+            if (last_frame_ && (*source_)[cursor_].traced) ++counters_.camera_rays_reused;
             return &(*source_)[cursor_++];
         }
         if (reuse_ && keep_ && source_ == &ahead_) keep_taken_ahead();
@@ -302,6 +316,7 @@ class PixelShader {
     std::vector<CameraHits::Sample>* tile_hits_ = nullptr;     // this tile's kept hits
     const std::vector<CameraHits::Sample>* source_ = nullptr;  // hits taken in order
     size_t cursor_ = 0;                                        // the next one to take
+    size_t keep_limit_ = 0;  // at most this many kept in the tile (kKeptPerPixel)
     bool reuse_ = false, keep_ = false;
     bool last_frame_ = false;  // source_ holds the last frame's hits (CameraHits)
     // The tile's camera rays traced ahead in packets (trace_ahead)
@@ -462,7 +477,10 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
         if (stats.cancelled) {
             kept->clear();  // some tiles were never rendered
         } else {
-            kept->valid = keep;
+            const bool overflow =
+                std::any_of(counters.begin(), counters.end(),
+                            [](const Counters& c) { return c.hits_overflow; });
+            kept->valid = keep && !overflow;
             kept->keyed = true;
             kept->width = settings.width;
             kept->height = settings.height;

@@ -62,7 +62,8 @@ inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 26;
 /// repays. Modules are taken to be functions of their arguments (the contract). The owner
 /// calls clear() when the scene's geometry changes in place. One sample per pixel and at
 /// most kMaxPixels pixels (68 bytes each): larger or supersampled frames neither fill nor
-/// use it.
+/// use it, and a frame whose pixel loop asks more than two points a pixel of a tile (a
+/// student's supersampling in module 01) keeps none.
 struct CameraHits {
     static constexpr std::int64_t kMaxPixels = std::int64_t{1} << 20;  // 1280 x 800
     struct Sample {
