@@ -258,4 +258,23 @@ inline void check_counts(const Frame& f) {
     }
 }
 
+// The three frames after one that threw or was cancelled, with the loop behaving again:
+// each gives the fresh image with true counts, and reuses every point it asks for when
+// the frame before had kept them all (kept_all), otherwise only the third does (the
+// first notes the key, the second keeps)
+inline void check_frames_after(const Scene& scene, const RenderSettings& settings,
+                               const ModuleTable& modules, const Image& fresh,
+                               std::int64_t calls, bool kept_all) {
+    Image image;
+    for (int frame = 0; frame < 3; ++frame) {
+        CAPTURE(frame);
+        const Frame f = render_frame(scene, settings, modules, image);
+        CHECK_FALSE(f.stats.cancelled);
+        CHECK(differing_pixels(image, fresh) == 0);
+        check_counts(f);
+        const bool reuses = kept_all || frame == 2;
+        CHECK(f.stats.camera_rays_reused == (reuses ? std::uint64_t(calls) : 0u));
+    }
+}
+
 }  // namespace raylab::camera_hits_test

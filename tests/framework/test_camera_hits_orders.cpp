@@ -159,16 +159,8 @@ TEST_SUITE("kept camera hits adversarial") {
                                             LoopThrew);
                             st.throw_at = -1;
                             CHECK(kept.valid == (thrower == 2));
-                            for (int frame = 0; frame < 3; ++frame) {
-                                CAPTURE(frame);
-                                const Frame f =
-                                    render_frame(scene, settings, modules, image);
-                                CHECK(differing_pixels(image, fresh) == 0);
-                                check_counts(f);
-                                const bool reuses = thrower == 2 || frame == 2;
-                                CHECK(f.stats.camera_rays_reused ==
-                                      (reuses ? std::uint64_t(calls) : 0u));
-                            }
+                            check_frames_after(scene, settings, modules, fresh, calls,
+                                               thrower == 2);
                         }
                     }
                 }
@@ -217,17 +209,8 @@ TEST_SUITE("kept camera hits adversarial") {
                             st.cancel_at = -1;
                             cancel = false;
                             CHECK(kept.valid == (cancelled == 2));
-                            for (int frame = 0; frame < 3; ++frame) {
-                                CAPTURE(frame);
-                                const Frame f =
-                                    render_frame(scene, settings, modules, image);
-                                CHECK_FALSE(f.stats.cancelled);
-                                CHECK(differing_pixels(image, fresh) == 0);
-                                check_counts(f);
-                                const bool reuses = cancelled == 2 || frame == 2;
-                                CHECK(f.stats.camera_rays_reused ==
-                                      (reuses ? std::uint64_t(calls) : 0u));
-                            }
+                            check_frames_after(scene, settings, modules, fresh, calls,
+                                               cancelled == 2);
                         }
                     }
                 }
