@@ -99,7 +99,8 @@ class PixelShader {
 
     // The next tile's kept camera hits (CameraHits): reuse them in order, or keep them
     void begin_tile(std::vector<CameraHits::Sample>* hits, bool reuse, bool keep,
-                    size_t pixels) {
+                    const Tile& tile) {
+        const size_t pixels = size_t(tile.x1 - tile.x0) * size_t(tile.y1 - tile.y0);
         if (keep) hits->reserve(pixels);
         keep_limit_ = kKeptPerPixel * pixels;
         tile_hits_ = hits;
@@ -426,9 +427,7 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
                     const Tile tile{x0, y0, std::min(x0 + kTileSize, settings.width),
                                     std::min(y0 + kTileSize, settings.height)};
                     if (reuse || keep)
-                        shader.begin_tile(
-                            &kept->tiles[size_t(t)], reuse, keep,
-                            size_t(tile.x1 - tile.x0) * (tile.y1 - tile.y0));
+                        shader.begin_tile(&kept->tiles[size_t(t)], reuse, keep, tile);
                     // Each tile starts without a shadow hint: which thread had the tile
                     // before must not change its work counts
                     shader.forget_blocker();
@@ -473,23 +472,9 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
     FrameStats stats;
     stats.threads = threads;
     stats.cancelled = settings.cancel && settings.cancel->load();
-    if (kept && !reuse) {
-        if (stats.cancelled) {
-            kept->clear();  // some tiles were never rendered
-        } else {
-            const bool overflow =
-                std::any_of(counters.begin(), counters.end(),
-                            [](const Counters& c) { return c.hits_overflow; });
-            kept->valid = keep && !overflow;
-            kept->keyed = true;
-            kept->width = settings.width;
-            kept->height = settings.height;
-            kept->view = view;
-            std::copy(primitives, primitives + 3, kept->primitives);
-            kept->modules = hit_modules;
-        }
-    }
+    bool overflow = false;  // a tile's pixel loop asked more than it may keep
     for (const Counters& c : counters) {
+        overflow |= c.hits_overflow;
         stats.camera_rays += c.camera_rays;
         stats.camera_rays_reused += c.camera_rays_reused;
         stats.camera_rays_in_packets +=
@@ -499,6 +484,17 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
         stats.shadow_rays_disabled += c.disabled;
         stats.intersection_tests += c.trace.intersection_tests;
         stats.bvh_nodes += c.trace.bvh_nodes;
+    }
+    // The frame's key, and whether its hits are kept. A cancelled frame leaves them
+    // forgotten, as its start left them (some tiles were never rendered)
+    if (kept && !reuse && !stats.cancelled) {
+        kept->valid = keep && !overflow;
+        kept->keyed = true;
+        kept->width = settings.width;
+        kept->height = settings.height;
+        kept->view = view;
+        std::copy(primitives, primitives + 3, kept->primitives);
+        kept->modules = hit_modules;
     }
     stats.non_finite_pixels = count_non_finite(image);
     stats.milliseconds = std::chrono::duration<double, std::milli>(

@@ -234,13 +234,14 @@ void frame_overlay(Viewer& v) {
     }
     if (f.last_reused && !f.shown_preview) {
         ImGui::Text("no rays cast (the kept frame took %.2f ms)", f.last.milliseconds);
-    } else if (f.last.camera_rays_reused > 0) {
-        // Its rays are the shadow rays alone: say why they are fewer
-        ImGui::Text("%.2f Mrays/s on %d threads; camera hits reused, no camera ray cast",
-                    f.last.rays_per_second() * 1e-6, f.last.threads);
     } else {
-        ImGui::Text("%.2f Mrays/s on %d threads", f.last.rays_per_second() * 1e-6,
-                    f.last.threads);
+        // With kept camera hits its rays are the shadow rays alone: say why they are
+        // fewer
+        ImGui::Text("%.2f Mrays/s on %d threads%s", f.last.rays_per_second() * 1e-6,
+                    f.last.threads,
+                    f.last.camera_rays_reused > 0
+                        ? "; camera hits reused, no camera ray cast"
+                        : "");
     }
     ImGui::EndGroup();
     ImGui::SameLine();
