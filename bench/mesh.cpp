@@ -2,11 +2,13 @@
 #include "mesh.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
 
 #include "raylab/renderer.h"
+#include "report.h"
 
 namespace raylab::bench {
 
@@ -203,6 +205,37 @@ Scene random_soup(int triangles, Rng& rng) {
     scene.lights.push_back(PointLight{Vec3(3.0f, 4.0f, 3.0f), Vec3(40.0f)});
     scene.commit();
     return scene;
+}
+
+Scene as_added(const Scene& scene) {
+    Scene added;
+    added.name = scene.name;
+    added.materials = scene.materials;
+    added.planes = scene.planes;
+    added.spheres = scene.spheres;
+    added.triangles.resize(scene.triangles.size());
+    added.normals.resize(scene.normals.size());
+    for (size_t k = 0; k < scene.triangles.size(); ++k) {
+        const size_t at = scene.triangle_source(k);
+        added.triangles.at(at) = scene.triangles[k];
+        if (!scene.normals.empty()) added.normals.at(at) = scene.normals[k];
+    }
+    added.lights = scene.lights;
+    added.view = scene.view;
+    added.ambient = scene.ambient;
+    return added;
+}
+
+double commit_seconds(const Scene& scene, int repeats) {
+    const Scene added = as_added(scene);
+    std::vector<double> s;
+    for (int k = 0; k <= repeats; ++k) {
+        Scene fresh = added;
+        const auto start = std::chrono::steady_clock::now();
+        fresh.commit();
+        if (k > 0) s.push_back(seconds_since(start));  // the first: warm-up
+    }
+    return median(s);
 }
 
 std::vector<Ray> camera_rays(const Scene& scene, const ModuleTable& modules, int width,

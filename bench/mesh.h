@@ -29,10 +29,20 @@ Scene terrain(int triangles);
 /// A random soup of `triangles` triangles: each with its centre uniform in the cube
 /// [-1, 1]^3 and its vertices at random directions and distances around it, so they
 /// overlap and cross each other, slivers included (the hardest case for a BVH's boxes),
-/// and their order in memory has nothing to do with where they lie. A line through the
+/// and the order they are made in has nothing to do with where they lie (commit() then
+/// moves them into the BVH's order). A line through the
 /// cube's centre along an axis crosses about 12 of them, whatever their number. One
 /// light.
 Scene random_soup(int triangles, Rng& rng);
+
+/// The scene as it was before its first commit(): its triangles (and vertex normals) in
+/// the order they were added, which commit() changed (Scene::triangle_source), not
+/// committed. Build times start from it, as a freshly made or loaded scene's commit()
+/// does.
+Scene as_added(const Scene& scene);
+
+/// Median seconds of commit() on a fresh copy of as_added(scene) (the copy untimed).
+double commit_seconds(const Scene& scene, int repeats);
 
 /// The camera rays render() casts for a width x height image of scene.view: one through
 /// every pixel centre, built by the camera and pixel-loop modules, w normalised.

@@ -22,9 +22,10 @@ namespace engine_kernels {
 namespace {
 
 // The single-ray queries read the BVH slots' primitives from a Source: SlotPrimitives
-// (the scene's copy in slot order, in small scenes) or Primitives (through the primitive
-// order). Avx: the walk tests a node's eight boxes in one AVX register (only in the
-// AVX2 version, engine_simd.h)
+// (the scene's copy in slot order, in small scenes), SlotOrderTriangles (a larger scene
+// without spheres, whose triangles are in slot order) or Primitives (through the
+// primitive order). Avx: the walk tests a node's eight boxes in one AVX register (only in
+// the AVX2 version, engine_simd.h)
 
 // The nearest primitive and its Hit as its module returns it: t, position, normal, uv
 // (material and shading normal are the scene's to fill)
@@ -77,6 +78,8 @@ RAYLAB_INLINE void closest_hit_query(const Scene& scene, const Ray& r,
                                      TraceCounters& counters, Hit& hit, PrimRef& best) {
     if (const Scene::SlotPrimitive* slots = scene.slot_primitives())
         closest_hit_from<Avx>(scene, SlotPrimitives{slots}, r, counters, hit, best);
+    else if (scene.spheres.empty())
+        closest_hit_from<Avx>(scene, SlotOrderTriangles(scene), r, counters, hit, best);
     else
         closest_hit_from<Avx>(scene, Primitives(scene), r, counters, hit, best);
 }
@@ -119,6 +122,8 @@ RAYLAB_INLINE bool any_hit_query(const Scene& scene, const Ray& r,
                                  TraceCounters& counters, AnyHitHint* hint) {
     if (const Scene::SlotPrimitive* slots = scene.slot_primitives())
         return any_hit_from<Avx>(scene, SlotPrimitives{slots}, r, counters, hint);
+    if (scene.spheres.empty())
+        return any_hit_from<Avx>(scene, SlotOrderTriangles(scene), r, counters, hint);
     return any_hit_from<Avx>(scene, Primitives(scene), r, counters, hint);
 }
 

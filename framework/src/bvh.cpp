@@ -6,6 +6,8 @@
 // The tree depends on the boxes only, never on the number of threads or their timing:
 // - a node's split is a function of its primitives (bins merge exactly, and the
 //   partition moves primitives in the order std::partition does);
+// - a leaf lists its primitives in increasing order, as does a range split by index
+//   (so a build of the same boxes listed in slot order gives the same slots);
 // - subtrees of at least kTaskMin primitives may be built by other threads into their
 //   own node lists, which join() splices into the depth-first order one thread builds.
 // So the node array and the primitive order are the same bit for bit whatever the
@@ -77,9 +79,10 @@ struct Builder {
         split(item, binning, axis, bin, halves);
     }
 
-    // Makes item a leaf of all its primitives
+    // Makes item a leaf of all its primitives, in increasing order
     void leaf(Item& item) const {
         const Task& t = item.t;
+        order_by_prim(t.first, t.count);
         for (std::uint32_t k = t.first; k < t.first + t.count; ++k)
             prims[k] = refs[k].prim();
         item.leaf = Bvh::kLeaf | t.count << Bvh::kCountShift | t.first;
@@ -134,12 +137,25 @@ struct Builder {
 
     void split_by_index(Item& item) const {
         const Task& t = item.t;
+        order_by_prim(t.first, t.count);
         const std::uint32_t left_count = t.count / 2;
         item.child[0] = item.child[1] = Task{};
         bounds(refs, t.first, left_count, item.child[0].box, item.child[0].centres);
         bounds(refs, t.first + left_count, t.count - left_count, item.child[1].box,
                item.child[1].centres);
         set_ranges(item, left_count);
+    }
+
+    // A leaf's primitives, and a range split by index, in increasing order, not in the
+    // order the partitions left them (which depends on the order the boxes came in):
+    // Scene::commit() renames its triangles by slot, and a build of the same boxes in
+    // that order must give the same slots (commit() twice moves nothing)
+    void order_by_prim(std::uint32_t first, std::uint32_t count) const {
+        const auto by_prim = [](const Ref& a, const Ref& b) {
+            return a.prim() < b.prim();
+        };
+        Ref *begin = refs + first, *end = begin + count;
+        if (!std::is_sorted(begin, end, by_prim)) std::sort(begin, end, by_prim);
     }
 
     static void set_ranges(Item& item, std::uint32_t left_count) {

@@ -42,7 +42,8 @@ void name_blocker(const Scene& scene, const ModuleTable& modules, const Ray& r,
         keep(modules.intersect_sphere(r, scene.spheres[k].sphere), "sphere", k);
     for (size_t k = 0; k < scene.triangles.size(); ++k) {
         const SceneTriangle& tri = scene.triangles[k];
-        keep(modules.intersect_triangle(r, tri.v0, tri.v1, tri.v2), "triangle", k);
+        keep(modules.intersect_triangle(r, tri.v0, tri.v1, tri.v2), "triangle",
+             scene.triangle_source(k));
     }
 }
 

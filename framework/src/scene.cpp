@@ -171,7 +171,7 @@ void Scene::commit() {
                                                                         : 0);
     for (size_t k = 0; k < triangles.size(); ++k) {
         const SceneTriangle& t = triangles[k];
-        const std::string what = "triangle " + std::to_string(k);
+        const std::string what = "triangle " + std::to_string(triangle_source(k));
         if (!is_finite(t.v0) || !is_finite(t.v1) || !is_finite(t.v2))
             throw Error(what + ": vertex is not finite");
         if (!normals.empty()) {
@@ -199,6 +199,7 @@ void Scene::commit() {
     if (!std::isfinite(ambient) || ambient < 0.0f)
         throw Error("ambient term must be finite and non-negative");
     bvh_.build(boxes);
+    store_in_slot_order(degenerate, face_normals);
     back_with_huge_pages(triangles.data(), triangles.size() * sizeof(SceneTriangle));
     std::vector<SlotPrimitive> slots;
     if (boxes.size() <= kSlotCopyUpTo) {
@@ -223,6 +224,51 @@ void Scene::commit() {
     face_normals_ = std::move(face_normals);
     slots_ = std::move(slots);
     committed_ = true;
+}
+
+// The triangles, their normals and flags moved into the BVH's slot order, and the BVH's
+// names for them changed to match; source_ follows each triangle to the index it was
+// added at
+void Scene::store_in_slot_order(std::vector<bool>& degenerate,
+                                std::vector<Vec3>& face_normals) {
+    const std::uint32_t sphere_count = static_cast<std::uint32_t>(spheres.size());
+    // Triangle k's place in slot order: order[j] is the triangle in the j-th triangle
+    // slot
+    std::vector<std::uint32_t> order;
+    order.reserve(triangles.size());
+    bool in_place = true;
+    for (const std::uint32_t p : bvh_.prims()) {
+        if (p < sphere_count) continue;
+        in_place = in_place && p - sphere_count == order.size();
+        order.push_back(p - sphere_count);
+    }
+    if (in_place) {
+        // A commit() of triangles already in slot order, or of triangles added since
+        // (which keep the index they arrived at)
+        if (source_.size() > triangles.size()) source_.resize(triangles.size());
+        return;
+    }
+    const auto gather = [&](auto& values) {
+        if (values.empty()) return;
+        std::remove_reference_t<decltype(values)> moved(values.size());
+        for (size_t j = 0; j < order.size(); ++j)
+            moved[j] = values[order[j]];
+        values.swap(moved);
+    };
+    gather(triangles);
+    gather(normals);
+    gather(degenerate);
+    gather(face_normals);
+    std::vector<std::uint32_t> source(order.size());
+    std::vector<std::uint32_t> name(sphere_count + order.size());
+    for (std::uint32_t k = 0; k < sphere_count; ++k)
+        name[k] = k;
+    for (size_t j = 0; j < order.size(); ++j) {
+        source[j] = static_cast<std::uint32_t>(triangle_source(order[j]));
+        name[sphere_count + order[j]] = sphere_count + static_cast<std::uint32_t>(j);
+    }
+    source_.swap(source);
+    bvh_.rename(name);
 }
 
 Aabb Scene::bounds() const {

@@ -24,7 +24,8 @@ TEST_SUITE("slot copy") {
         const Scene scene = boundary_scene(51, 300, targets);
         check_slots(scene);
         CHECK(scene.acceleration_bytes() ==
-              scene.bvh().bytes() + (scene.triangles.size() + 7) / 8 +
+              scene.bvh().bytes() + 4 * scene.triangles.size() +
+                  (scene.triangles.size() + 7) / 8 +
                   sizeof(Vec3) * scene.triangles.size() +
                   sizeof(Slot) * (scene.spheres.size() + scene.triangles.size()));
         // The flags stay clear of every index the BVH can name

@@ -126,7 +126,8 @@ class Bvh {
     /// four), collapsed to kWidth wide as it goes. From 4,096 primitives on, the build
     /// runs on up to `threads` threads (0: the hardware threads), one per 2,048
     /// primitives at most. The tree, node array included, depends on the boxes only,
-    /// never on the number of threads or their timing.
+    /// never on the number of threads or their timing; a leaf's slots hold its
+    /// primitives in increasing order.
     void build(const std::vector<Aabb>& boxes, unsigned threads = 0);
     /// Interior nodes on the longest path from the root to a leaf (0 for an empty tree or
     /// a single leaf).
@@ -142,6 +143,13 @@ class Bvh {
     const Aabb& bounds() const { return bounds_; }
     /// The primitive in slot k: leaves name contiguous ranges of slots.
     const std::vector<std::uint32_t>& prims() const { return prims_; }
+    /// Gives the primitives new names: the slot that held primitive p then holds
+    /// new_name[p] (Scene::commit() moves its triangles into slot order). The tree and
+    /// its boxes are unchanged.
+    void rename(const std::vector<std::uint32_t>& new_name) {
+        for (std::uint32_t& p : prims_)
+            p = new_name[p];
+    }
 
     /// Visits every leaf whose box the ray may meet, nearer boxes first.
     /// visit(first, count, tmax) is called with the leaf's slots [first, first + count)

@@ -101,10 +101,17 @@ class Scene {
     std::vector<Material> materials;
     std::vector<ScenePlane> planes;
     std::vector<SceneSphere> spheres;
+    /// The triangles. commit() moves them, with their normals, into the order in which
+    /// the BVH's leaves hold them (a leaf's triangles then lie side by side in memory):
+    /// triangle_source names each by the index it was added at.
     std::vector<SceneTriangle> triangles;
     /// Vertex normals by triangle: empty (every triangle flat-shaded) or exactly one
     /// entry per triangle (commit() checks; call it again after changing them).
     std::vector<VertexNormals> normals;
+    /// The index at which triangle k was added (its place in add_triangle's order, an OBJ
+    /// file's faces), though commit() has moved it since; a triangle added after the
+    /// last commit() keeps its index. Messages name triangles by it.
+    size_t triangle_source(size_t k) const { return k < source_.size() ? source_[k] : k; }
     /// Appends a triangle, keeping normals one per triangle: the first smooth triangle
     /// (n not all zero) gives the flat ones before it entries of zeros, and once normals
     /// holds entries every triangle gets one. A flat mesh never allocates normals.
@@ -207,12 +214,12 @@ class Scene {
         return slots_.empty() ? nullptr : slots_.data();
     }
 
-    /// Bytes of the acceleration data: BVH nodes, primitive order, the degenerate flags,
-    /// the face normals and the slot copy (otherwise the engine reads spheres and
-    /// triangles from the scene's own vectors, through the order).
+    /// Bytes of the acceleration data: BVH nodes, primitive order, the triangles' source
+    /// indices, the degenerate flags, the face normals and the slot copy (otherwise the
+    /// engine reads spheres and triangles from the scene's own vectors).
     size_t acceleration_bytes() const {
-        return bvh_.bytes() + (degenerate_.size() + 7) / 8 +
-               face_normals_.size() * sizeof(Vec3) +
+        return bvh_.bytes() + source_.size() * sizeof(std::uint32_t) +
+               (degenerate_.size() + 7) / 8 + face_normals_.size() * sizeof(Vec3) +
                slots_.size() * sizeof(SlotPrimitive);
     }
 
@@ -222,11 +229,15 @@ class Scene {
     std::optional<Hit> engine_closest_hit(const GeometryEngine& engine, const Ray& r,
                                           TraceCounters& counters) const;
 
-    Bvh bvh_;                           // over spheres (first) and triangles (after them)
-    std::vector<bool> degenerate_;      // by triangle; empty when none is degenerate
-    std::vector<Vec3> face_normals_;    // by triangle, or empty (has_face_normals)
-    std::vector<SlotPrimitive> slots_;  // by BVH slot, or empty (slot_primitives)
-    bool committed_ = false;            // the last commit() succeeded: the engine may run
+    void store_in_slot_order(std::vector<bool>& degenerate,
+                             std::vector<Vec3>& face_normals);
+
+    Bvh bvh_;  // over spheres (first) and triangles (after them)
+    std::vector<std::uint32_t> source_;  // by triangle: triangle_source, or empty
+    std::vector<bool> degenerate_;       // by triangle; empty when none is degenerate
+    std::vector<Vec3> face_normals_;     // by triangle, or empty (has_face_normals)
+    std::vector<SlotPrimitive> slots_;   // by BVH slot, or empty (slot_primitives)
+    bool committed_ = false;  // the last commit() succeeded: the engine may run
 };
 
 /// The Occluder the shadow module receives: the scene's any-hit query, counted, with
