@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 #include <utility>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -248,17 +249,20 @@ void Scene::store_in_slot_order(std::vector<bool>& degenerate,
         if (source_.size() > triangles.size()) source_.resize(triangles.size());
         return;
     }
-    const auto gather = [&](auto& values) {
-        if (values.empty()) return;
-        std::remove_reference_t<decltype(values)> moved(values.size());
-        for (size_t j = 0; j < order.size(); ++j)
-            moved[j] = values[order[j]];
-        values.swap(moved);
+    // Every array moved into a new one first, then all swapped in: an allocation that
+    // throws leaves the scene as it was
+    const auto gathered = [&](const auto& values) {
+        std::remove_const_t<std::remove_reference_t<decltype(values)>> moved(
+            values.size());
+        if (!values.empty())
+            for (size_t j = 0; j < order.size(); ++j)
+                moved[j] = values[order[j]];
+        return moved;
     };
-    gather(triangles);
-    gather(normals);
-    gather(degenerate);
-    gather(face_normals);
+    auto moved_triangles = gathered(triangles);
+    auto moved_normals = gathered(normals);
+    auto moved_degenerate = gathered(degenerate);
+    auto moved_face_normals = gathered(face_normals);
     std::vector<std::uint32_t> source(order.size());
     std::vector<std::uint32_t> name(sphere_count + order.size());
     for (std::uint32_t k = 0; k < sphere_count; ++k)
@@ -267,6 +271,10 @@ void Scene::store_in_slot_order(std::vector<bool>& degenerate,
         source[j] = static_cast<std::uint32_t>(triangle_source(order[j]));
         name[sphere_count + order[j]] = sphere_count + static_cast<std::uint32_t>(j);
     }
+    triangles.swap(moved_triangles);
+    normals.swap(moved_normals);
+    degenerate.swap(moved_degenerate);
+    face_normals.swap(moved_face_normals);
     source_.swap(source);
     bvh_.rename(name);
 }
