@@ -86,10 +86,11 @@ void check_slot_order(const Scene& scene) {
 TEST_SUITE("slot order") {
     TEST_CASE("commit() moves triangles, normals and flags into slot order") {
         // Small (the slot copy, face normals), large (neither), with spheres among them
-        for (const auto& [n, spheres] :
-             {std::pair{300, 0}, std::pair{300, 9},
-              std::pair{int(Scene::kSlotCopyUpTo) + 100, 0},
-              std::pair{int(Scene::kFaceNormalsUpTo) + 10, 5}}) {
+        for (const auto& size : {std::pair{300, 0}, std::pair{300, 9},
+                                 std::pair{int(Scene::kSlotCopyUpTo) + 100, 0},
+                                 std::pair{int(Scene::kFaceNormalsUpTo) + 10, 5}}) {
+            // Not a structured binding: clang's C++17 cannot capture one in INFO's lambda
+            const int n = size.first, spheres = size.second;
             INFO(n << " triangles, " << spheres << " spheres");
             const Scene added = added_scene(n, spheres, 17 + n + spheres);
             Scene scene = added;
