@@ -116,6 +116,8 @@ class Scene {
     /// (n not all zero) gives the flat ones before it entries of zeros, and once normals
     /// holds entries every triangle gets one. A flat mesh never allocates normals.
     void add_triangle(const SceneTriangle& t, const VertexNormals& n = {}) {
+        // Triangles cleared or cut since the last commit(): their sources go with them
+        if (source_.size() > triangles.size()) source_.resize(triangles.size());
         if (!normals.empty() || n.n0 != Vec3(0.0f)) {
             normals.resize(triangles.size());
             normals.push_back(n);
