@@ -232,6 +232,7 @@ void Scene::commit() {
 // added at
 void Scene::store_in_slot_order(std::vector<bool>& degenerate,
                                 std::vector<Vec3>& face_normals) {
+    forget_removed_sources();
     const std::uint32_t sphere_count = static_cast<std::uint32_t>(spheres.size());
     // Triangle k's place in slot order: order[j] is the triangle in the j-th triangle
     // slot
@@ -243,12 +244,8 @@ void Scene::store_in_slot_order(std::vector<bool>& degenerate,
         in_place = in_place && p - sphere_count == order.size();
         order.push_back(p - sphere_count);
     }
-    if (in_place) {
-        // A commit() of triangles already in slot order, or of triangles added since
-        // (which keep the index they arrived at)
-        if (source_.size() > triangles.size()) source_.resize(triangles.size());
-        return;
-    }
+    // Already in slot order, or added since (they keep the index they arrived at)
+    if (in_place) return;
     // Every array moved into a new one first, then all swapped in: an allocation that
     // throws leaves the scene as it was
     const auto gathered = [&](const auto& values) {

@@ -116,8 +116,7 @@ class Scene {
     /// (n not all zero) gives the flat ones before it entries of zeros, and once normals
     /// holds entries every triangle gets one. A flat mesh never allocates normals.
     void add_triangle(const SceneTriangle& t, const VertexNormals& n = {}) {
-        // Triangles cleared or cut since the last commit(): their sources go with them
-        if (source_.size() > triangles.size()) source_.resize(triangles.size());
+        forget_removed_sources();
         if (!normals.empty() || n.n0 != Vec3(0.0f)) {
             normals.resize(triangles.size());
             normals.push_back(n);
@@ -233,6 +232,10 @@ class Scene {
 
     void store_in_slot_order(std::vector<bool>& degenerate,
                              std::vector<Vec3>& face_normals);
+    // Triangles cleared or cut since the last commit(): their sources go with them
+    void forget_removed_sources() {
+        if (source_.size() > triangles.size()) source_.resize(triangles.size());
+    }
 
     Bvh bvh_;  // over spheres (first) and triangles (after them)
     std::vector<std::uint32_t> source_;  // by triangle: triangle_source, or empty
