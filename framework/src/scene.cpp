@@ -268,6 +268,7 @@ void Scene::store_in_slot_order(std::vector<bool>& degenerate,
         source[j] = static_cast<std::uint32_t>(triangle_source(order[j]));
         name[sphere_count + order[j]] = sphere_count + static_cast<std::uint32_t>(j);
     }
+    next_source_ += static_cast<std::uint32_t>(triangles.size() - source_.size());
     triangles.swap(moved_triangles);
     normals.swap(moved_normals);
     degenerate.swap(moved_degenerate);

@@ -369,6 +369,70 @@ TEST_SUITE("slot order adversarial") {
                              doctest::Contains("triangle 3: material index 7"), Error);
     }
 
+    TEST_CASE("triangles appended after a cut are named after every earlier one") {
+        // DEFECT: after commit() had moved them, a cut from the end kept a random half of
+        // the names, and the triangles appended after it were named by their place:
+        // 200 triangles, 153 distinct names
+        Scene scene = soup(300, 0, 43);
+        std::vector<SceneTriangle> by_source = scene.triangles;
+        std::vector<VertexNormals> normals = scene.normals;
+        scene.commit();
+        REQUIRE(moved(scene) > 100);
+        Rng rng(6);
+        const auto append = [&](size_t n, bool with_add_triangle) {
+            for (size_t k = 0; k < n; ++k) {
+                const SceneTriangle t = random_triangle(rng, 1.0f, 1);
+                const VertexNormals vn{rng.direction(), rng.direction(), rng.direction()};
+                if (with_add_triangle) {
+                    scene.add_triangle(t, vn);
+                } else {
+                    scene.triangles.push_back(t);
+                    scene.normals.push_back(vn);
+                }
+                CHECK(scene.triangle_source(scene.triangles.size() - 1) ==
+                      by_source.size());
+                by_source.push_back(t);
+                normals.push_back(vn);
+            }
+        };
+        std::vector<size_t> kept;
+        for (size_t k = 0; k < 100; ++k)
+            kept.push_back(scene.triangle_source(k));
+        scene.triangles.resize(100);
+        scene.normals.resize(100);
+        append(100, true);
+        for (size_t k = 0; k < 100; ++k)
+            CHECK(scene.triangle_source(k) == kept[k]);
+        std::vector<size_t> names;
+        for (size_t k = 0; k < scene.triangles.size(); ++k)
+            names.push_back(scene.triangle_source(k));
+        std::sort(names.begin(), names.end());
+        CHECK(std::unique(names.begin(), names.end()) == names.end());  // 200 names
+        CHECK_THROWS_WITH_AS(  // a bad one among them: named by its own index
+            [&] {
+                Scene bad = scene;
+                bad.triangles[150].material = 9;
+                bad.commit();
+            }(),
+            doctest::Contains("triangle 350: material index 9"), Error);
+        scene.commit();
+        check_sources(scene, by_source, normals);
+        CHECK(check_rays(scene, 40, 3) > 10);
+        // Cut again with pop_back and committed, then pushed, not added: the same
+        scene.triangles.pop_back(), scene.normals.pop_back();
+        scene.commit();
+        append(3, false);
+        scene.commit();
+        check_sources(scene, by_source, normals);
+        // Emptied: the count starts again at 0
+        scene.triangles.clear(), scene.normals.clear();
+        scene.commit();
+        by_source.clear(), normals.clear();
+        append(5, false);
+        scene.commit();
+        check_sources(scene, by_source, normals);
+    }
+
     TEST_CASE("coincident centres: split by index, ties at the centre") {
         // Triangles in z = 0 and small spheres whose boxes are centred on 0 (split by
         // index, spheres and triangles together), interleaved with a soup below them: a

@@ -108,10 +108,17 @@ class Scene {
     /// Vertex normals by triangle: empty (every triangle flat-shaded) or exactly one
     /// entry per triangle (commit() checks; call it again after changing them).
     std::vector<VertexNormals> normals;
-    /// The index at which triangle k was added (its place in add_triangle's order, an OBJ
-    /// file's faces), though commit() has moved it since; a triangle added after the
-    /// last commit() keeps its index. Messages name triangles by it.
-    size_t triangle_source(size_t k) const { return k < source_.size() ? source_[k] : k; }
+    /// The index at which triangle k was added (its place in add_triangle's order; an OBJ
+    /// file's triangles in file order), though commit() has moved it since. Messages
+    /// name triangles by it. The names follow the triangles through commit(), changes in
+    /// place, and appends and cuts at the end (pop_back, resize): a triangle appended
+    /// after a cut (by add_triangle, or after a commit() of the cut) is named after every
+    /// triangle added before it, so no two share a name; after clear() the count starts
+    /// again at 0. Erasing or inserting elsewhere in `triangles` after a commit() is not
+    /// tracked: build the list afresh instead.
+    size_t triangle_source(size_t k) const {
+        return k < source_.size() ? source_[k] : next_source_ + (k - source_.size());
+    }
     /// Appends a triangle, keeping normals one per triangle: the first smooth triangle
     /// (n not all zero) gives the flat ones before it entries of zeros, and once normals
     /// holds entries every triangle gets one. A flat mesh never allocates normals.
@@ -232,17 +239,21 @@ class Scene {
 
     void store_in_slot_order(std::vector<bool>& degenerate,
                              std::vector<Vec3>& face_normals);
-    // Triangles cleared or cut since the last commit(): their sources go with them
+    // Triangles cleared or cut since the last commit(): their sources go with them (and
+    // the count of names starts again once none is left)
     void forget_removed_sources() {
+        if (triangles.empty()) source_.clear(), next_source_ = 0;
         if (source_.size() > triangles.size()) source_.resize(triangles.size());
     }
 
     Bvh bvh_;  // over spheres (first) and triangles (after them)
     std::vector<std::uint32_t> source_;  // by triangle: triangle_source, or empty
-    std::vector<bool> degenerate_;       // by triangle; empty when none is degenerate
-    std::vector<Vec3> face_normals_;     // by triangle, or empty (has_face_normals)
-    std::vector<SlotPrimitive> slots_;   // by BVH slot, or empty (slot_primitives)
-    bool committed_ = false;  // the last commit() succeeded: the engine may run
+    // Names handed out to the triangles in source_: those after it follow on from this
+    std::uint32_t next_source_ = 0;
+    std::vector<bool> degenerate_;      // by triangle; empty when none is degenerate
+    std::vector<Vec3> face_normals_;    // by triangle, or empty (has_face_normals)
+    std::vector<SlotPrimitive> slots_;  // by BVH slot, or empty (slot_primitives)
+    bool committed_ = false;            // the last commit() succeeded: the engine may run
 };
 
 /// The Occluder the shadow module receives: the scene's any-hit query, counted, with
