@@ -27,13 +27,19 @@ class RecordingOccluder : public Occluder {
 };
 
 // Names the closest primitive on r by testing every one (a probe, not a frame: the
-// linear scan costs a millisecond on large meshes and needs no primitive ids in Hit)
+// linear scan costs a millisecond on large meshes and needs no primitive ids in Hit).
+// Of primitives hit at the same t, the first kind (planes, spheres, triangles) and in it
+// the lowest index wins: triangles by their source, not where commit() moved them
 void name_blocker(const Scene& scene, const ModuleTable& modules, const Ray& r,
                   LightProbe& out) {
+    const char* best_kind = nullptr;
+    size_t best = 0;
     const auto keep = [&](const std::optional<Hit>& h, const char* kind, size_t k) {
         if (!h || !(h->t >= r.tmin && h->t <= r.tmax)) return;
-        if (out.blocker && !(h->t < out.blocker->t)) return;
-        out.blocker = h;
+        if (out.blocker && !(h->t < out.blocker->t) &&
+            !(h->t == out.blocker->t && kind == best_kind && k < best))
+            return;
+        out.blocker = h, best_kind = kind, best = k;
         out.blocker_name = std::string(kind) + " " + std::to_string(k);
     };
     for (size_t k = 0; k < scene.planes.size(); ++k)

@@ -493,6 +493,20 @@ TEST_SUITE("slot order adversarial") {
         REQUIRE(p.lights.size() == 1);
         CHECK(p.lights[0].blocked);
         CHECK(p.lights[0].blocker_name == "triangle 3000");
+        // A second blocker in the same plane, added as triangle 2500 and stored after
+        // 3000 (out of the camera ray's way): of the two hit at one t, the probe names
+        // the one added first
+        std::vector<size_t> at(4600);
+        for (size_t k = 0; k < 4600; ++k)
+            at[scene.triangle_source(k)] = k;
+        scene.triangles[at[2500]] = {Vec3(-3, -3, 5), Vec3(1, -3, 5), Vec3(-3, 30, 5), 1};
+        scene.commit();
+        for (size_t k = 0; k < 4600; ++k)
+            at[scene.triangle_source(k)] = k;
+        REQUIRE(at[3000] < at[2500]);
+        const PixelProbe q = probe_pixel(scene, view, settings, engine_table(), 1, 1);
+        REQUIRE(q.lights.size() == 1);
+        CHECK(q.lights[0].blocker_name == "triangle 2500");
     }
 
     TEST_CASE("empty scenes, and scenes emptied after a commit that moved triangles") {
