@@ -43,7 +43,7 @@ RAYLAB_INLINE void closest_hit_from(const Scene& scene, const Source& source,
             best = {PrimRef::Kind::plane, static_cast<std::uint32_t>(k)};
         }
     }
-    const WoopRay q(r);
+    const WoopRay q(r, WoopRay::Unpredictable{});
     Ray ray = r;
     ray.tmax = best_t;
     std::uint32_t best_slot = 0;

@@ -71,15 +71,47 @@ struct WoopRay {
     }
     static int next_axis(int a) { return a == 2 ? 0 : a + 1; }
 
+    // The axes chosen by branches, which coherent rays (a camera's, a light's shadow
+    // rays) predict: the first test starts at once
     explicit WoopRay(const Ray& r) {
         kz = dominant_axis(r.w);
         kx = next_axis(kz);
         ky = next_axis(kx);
         const float* w = glm::value_ptr(r.w);
-        const float* o = glm::value_ptr(r.o);
         const double Wz = w[kz];
         valid = Wz != 0.0;
         sz = valid ? 1.0 / Wz : 0.0;
+        set_shear(r);
+    }
+    // The same values without a branch on the axes, for the closest-hit query, whose
+    // rays may come from anywhere: the branches mispredicted 0.9 times a random ray in
+    // the Cornell box. 1 / w_kz is |w|'s largest component's reciprocal, with w_kz's
+    // sign (division is symmetric in sign, so the same double), and the division starts
+    // without waiting for the axis: with it waiting, camera rays took 1-5 % longer
+    struct Unpredictable {};
+    WoopRay(const Ray& r, Unpredictable) {
+        const float ax = std::abs(r.w.x), ay = std::abs(r.w.y), az = std::abs(r.w.z);
+        const double largest = std::max(ax, std::max(ay, az));
+        const double inv_largest = 1.0 / largest;
+        // dominant_axis's choice: ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2)
+        const int c1 = ax > ay, c2 = ax > az, c3 = ay > az;
+        kz = 2 - ((c1 & c2) * 2 + ((c1 ^ 1) & c3));
+        static constexpr int kNext[3] = {1, 2, 0};
+        kx = kNext[kz];
+        ky = kNext[kx];
+        const double Wz = glm::value_ptr(r.w)[kz];
+        valid = Wz != 0.0;
+        // |w_kz| is the largest |component| unless w holds a NaN (then 1 / w_kz, as
+        // above: NaN where w_kz is)
+        if (__builtin_expect(std::abs(Wz) == largest || !valid, 1))
+            sz = valid ? std::copysign(inv_largest, Wz) : 0.0;
+        else
+            sz = 1.0 / Wz;
+        set_shear(r);
+    }
+    void set_shear(const Ray& r) {
+        const float* w = glm::value_ptr(r.w);
+        const float* o = glm::value_ptr(r.o);
         sx = -double(w[kx]) * sz;
         sy = -double(w[ky]) * sz;
         ox = o[kx], oy = o[ky], oz = o[kz];
