@@ -369,7 +369,7 @@ TEST_SUITE("slot order adversarial") {
                              doctest::Contains("triangle 3: material index 7"), Error);
     }
 
-    TEST_CASE("triangles appended after a cut are named after every earlier one") {
+    TEST_CASE("after cuts and appends no two triangles share a name") {
         // DEFECT: after commit() had moved them, a cut from the end kept a random half of
         // the names, and the triangles appended after it were named by their place:
         // 200 triangles, 153 distinct names
@@ -431,6 +431,53 @@ TEST_SUITE("slot order adversarial") {
         append(5, false);
         scene.commit();
         check_sources(scene, by_source, normals);
+    }
+
+    TEST_CASE("no two triangles share a name, whatever is done to the list") {
+        // Random edits of the public vector, the untracked ones (erase and insert in
+        // the middle, push_back after a cut) included: names may go stale, never double
+        Scene scene = soup(200, 0, 45);
+        scene.normals.clear();
+        Rng rng(8);
+        for (int step = 0; step < 3000; ++step) {
+            std::vector<SceneTriangle>& t = scene.triangles;
+            const size_t at = t.empty() ? 0 : rng.next() % t.size();
+            switch (rng.next() % 9) {
+                case 0:
+                    scene.add_triangle(random_triangle(rng, 1.0f, 0));
+                    break;
+                case 1:
+                    t.push_back(random_triangle(rng, 1.0f, 1));
+                    break;
+                case 2:
+                    if (!t.empty()) t.pop_back();
+                    break;
+                case 3:
+                    t.resize(t.size() / 2 + t.size() / 4);
+                    break;
+                case 4:
+                    if (!t.empty()) t.erase(t.begin() + long(at));
+                    break;
+                case 5:
+                    t.insert(t.begin() + long(at), random_triangle(rng, 1.0f, 2));
+                    break;
+                case 6:
+                    if (rng.next() % 20 == 0) t.clear();
+                    break;
+                case 7:
+                    if (!t.empty()) t[at] = random_triangle(rng, 1.0f, 0);
+                    break;
+                default:
+                    scene.commit();
+                    break;
+            }
+            std::vector<size_t> names;
+            for (size_t k = 0; k < t.size(); ++k)
+                names.push_back(scene.triangle_source(k));
+            std::sort(names.begin(), names.end());
+            INFO("step " << step);
+            REQUIRE(std::adjacent_find(names.begin(), names.end()) == names.end());
+        }
     }
 
     TEST_CASE("coincident centres: split by index, ties at the centre") {

@@ -111,11 +111,11 @@ class Scene {
     /// The index at which triangle k was added (its place in add_triangle's order; an OBJ
     /// file's triangles in file order), though commit() has moved it since. Messages
     /// name triangles by it. The names follow the triangles through commit(), changes in
-    /// place, and appends and cuts at the end (pop_back, resize): a triangle appended
-    /// after a cut (by add_triangle, or after a commit() of the cut) is named after every
-    /// triangle added before it, so no two share a name; after clear() the count starts
-    /// again at 0. Erasing or inserting elsewhere in `triangles` after a commit() is not
-    /// tracked: build the list afresh instead.
+    /// place, and appends and cuts at the end (pop_back, resize), and no two triangles
+    /// share one: a triangle appended after a cut may take a cut triangle's name, never
+    /// a present one's. After clear(), once add_triangle or commit() has seen the empty
+    /// list, the names start again at 0. Erasing or inserting elsewhere in `triangles`
+    /// after a commit() is not tracked: build the list afresh instead.
     size_t triangle_source(size_t k) const {
         return k < source_.size() ? source_[k] : next_source_ + (k - source_.size());
     }
