@@ -264,11 +264,17 @@ void Scene::store_in_slot_order(std::vector<bool>& degenerate,
     std::vector<std::uint32_t> name(sphere_count + order.size());
     for (std::uint32_t k = 0; k < sphere_count; ++k)
         name[k] = k;
+    // Names are 32 bits: a commit() that would hand out more (after billions of cuts and
+    // appends) names the triangles afresh, by their places before the move
+    const std::uint64_t handed =
+        std::uint64_t{next_source_} + (triangles.size() - source_.size());
+    const bool afresh = handed > kLastSource;
     for (size_t j = 0; j < order.size(); ++j) {
-        source[j] = static_cast<std::uint32_t>(triangle_source(order[j]));
+        source[j] =
+            afresh ? order[j] : static_cast<std::uint32_t>(triangle_source(order[j]));
         name[sphere_count + order[j]] = sphere_count + static_cast<std::uint32_t>(j);
     }
-    next_source_ += static_cast<std::uint32_t>(triangles.size() - source_.size());
+    next_source_ = static_cast<std::uint32_t>(afresh ? triangles.size() : handed);
     triangles.swap(moved_triangles);
     normals.swap(moved_normals);
     degenerate.swap(moved_degenerate);

@@ -15,6 +15,13 @@
 
 using namespace raylab;
 
+namespace raylab {
+// The scene's test hook (raylab/scene.h): its count of names, set near its end
+struct SceneTestAccess {
+    static void set_next_source(Scene& s, std::uint32_t next) { s.next_source_ = next; }
+};
+}  // namespace raylab
+
 namespace {
 
 const size_t kCopy = Scene::kSlotCopyUpTo;
@@ -478,6 +485,39 @@ TEST_SUITE("slot order adversarial") {
             INFO("step " << step);
             REQUIRE(std::adjacent_find(names.begin(), names.end()) == names.end());
         }
+    }
+
+    TEST_CASE("names past 2^32 are handed out afresh, never twice") {
+        // Review: the 32-bit count wrapped after 2^32 names (about 30 minutes of cuts and
+        // appends), and a commit() then gave 80 triangles 60 names
+        Scene scene = soup(300, 0, 47);
+        scene.normals.clear();
+        scene.commit();
+        REQUIRE(moved(scene) > 100);
+        SceneTestAccess::set_next_source(scene, 0xfffffff6u);
+        Rng rng(9);
+        const auto distinct = [&] {
+            std::vector<size_t> names;
+            for (size_t k = 0; k < scene.triangles.size(); ++k)
+                names.push_back(scene.triangle_source(k));
+            std::sort(names.begin(), names.end());
+            return std::adjacent_find(names.begin(), names.end()) == names.end();
+        };
+        for (int k = 0; k < 30; ++k)
+            scene.add_triangle(random_triangle(rng, 1.0f, 0));
+        CHECK(scene.triangle_source(329) == size_t{0xfffffff6u} + 29);
+        CHECK(distinct());
+        scene.commit();
+        CHECK(distinct());
+        size_t largest = 0;
+        for (size_t k = 0; k < scene.triangles.size(); ++k)
+            largest = std::max(largest, scene.triangle_source(k));
+        CHECK(largest == 329);  // named afresh: 0 to 329
+        for (int k = 0; k < 5; ++k)
+            scene.add_triangle(random_triangle(rng, 1.0f, 0));
+        CHECK(scene.triangle_source(334) == 334);
+        scene.commit();
+        CHECK(distinct());
     }
 
     TEST_CASE("coincident centres: split by index, ties at the centre") {

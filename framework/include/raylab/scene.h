@@ -114,8 +114,10 @@ class Scene {
     /// place, and appends and cuts at the end (pop_back, resize), and no two triangles
     /// share one: a triangle appended after a cut may take a cut triangle's name, never
     /// a present one's. After clear(), once add_triangle or commit() has seen the empty
-    /// list, the names start again at 0. Erasing or inserting elsewhere in `triangles`
-    /// after a commit() is not tracked: build the list afresh instead.
+    /// list, the names start again at 0; a commit() that would hand out more than 2^32
+    /// names (billions of cuts and appends) names the triangles afresh, 0 to n - 1.
+    /// Erasing or inserting elsewhere in `triangles` after a commit() is not tracked:
+    /// build the list afresh instead.
     size_t triangle_source(size_t k) const {
         return k < source_.size() ? source_[k] : next_source_ + (k - source_.size());
     }
@@ -250,8 +252,10 @@ class Scene {
     std::vector<std::uint32_t> source_;  // by triangle: triangle_source, or empty
     // Names handed out to the triangles in source_: those after it follow on from this
     std::uint32_t next_source_ = 0;
-    std::vector<bool> degenerate_;      // by triangle; empty when none is degenerate
-    std::vector<Vec3> face_normals_;    // by triangle, or empty (has_face_normals)
+    static constexpr std::uint64_t kLastSource = 0xffffffffu;  // the largest name kept
+    friend struct SceneTestAccess;    // tests/framework: the count of names near its end
+    std::vector<bool> degenerate_;    // by triangle; empty when none is degenerate
+    std::vector<Vec3> face_normals_;  // by triangle, or empty (has_face_normals)
     std::vector<SlotPrimitive> slots_;  // by BVH slot, or empty (slot_primitives)
     bool committed_ = false;            // the last commit() succeeded: the engine may run
 };
