@@ -191,6 +191,15 @@ size_t moved(const Scene& scene) {
     return n;
 }
 
+// No two triangles share a name (triangle_source)
+bool names_distinct(const Scene& scene) {
+    std::vector<size_t> names;
+    for (size_t k = 0; k < scene.triangles.size(); ++k)
+        names.push_back(scene.triangle_source(k));
+    std::sort(names.begin(), names.end());
+    return std::adjacent_find(names.begin(), names.end()) == names.end();
+}
+
 int check_camera(const Scene& scene, const Vec3& eye, const Vec3& at, float fov) {
     TraceCounters counters;
     const auto rays = camera_blocks(View{eye, at, Vec3(0, 1, 0), fov}, 24, 24);
@@ -410,12 +419,8 @@ TEST_SUITE("slot order adversarial") {
         append(100, true);
         for (size_t k = 0; k < 100; ++k)
             CHECK(scene.triangle_source(k) == kept[k]);
-        std::vector<size_t> names;
-        for (size_t k = 0; k < scene.triangles.size(); ++k)
-            names.push_back(scene.triangle_source(k));
-        std::sort(names.begin(), names.end());
-        CHECK(std::unique(names.begin(), names.end()) == names.end());  // 200 names
-        CHECK_THROWS_WITH_AS(  // a bad one among them: named by its own index
+        CHECK(names_distinct(scene));  // 200 names
+        CHECK_THROWS_WITH_AS(          // a bad one among them: named by its own index
             [&] {
                 Scene bad = scene;
                 bad.triangles[150].material = 9;
@@ -478,12 +483,8 @@ TEST_SUITE("slot order adversarial") {
                     scene.commit();
                     break;
             }
-            std::vector<size_t> names;
-            for (size_t k = 0; k < t.size(); ++k)
-                names.push_back(scene.triangle_source(k));
-            std::sort(names.begin(), names.end());
             INFO("step " << step);
-            REQUIRE(std::adjacent_find(names.begin(), names.end()) == names.end());
+            REQUIRE(names_distinct(scene));
         }
     }
 
@@ -496,19 +497,12 @@ TEST_SUITE("slot order adversarial") {
         REQUIRE(moved(scene) > 100);
         SceneTestAccess::set_next_source(scene, 0xfffffff6u);
         Rng rng(9);
-        const auto distinct = [&] {
-            std::vector<size_t> names;
-            for (size_t k = 0; k < scene.triangles.size(); ++k)
-                names.push_back(scene.triangle_source(k));
-            std::sort(names.begin(), names.end());
-            return std::adjacent_find(names.begin(), names.end()) == names.end();
-        };
         for (int k = 0; k < 30; ++k)
             scene.add_triangle(random_triangle(rng, 1.0f, 0));
         CHECK(scene.triangle_source(329) == size_t{0xfffffff6u} + 29);
-        CHECK(distinct());
+        CHECK(names_distinct(scene));
         scene.commit();
-        CHECK(distinct());
+        CHECK(names_distinct(scene));
         size_t largest = 0;
         for (size_t k = 0; k < scene.triangles.size(); ++k)
             largest = std::max(largest, scene.triangle_source(k));
@@ -517,7 +511,7 @@ TEST_SUITE("slot order adversarial") {
             scene.add_triangle(random_triangle(rng, 1.0f, 0));
         CHECK(scene.triangle_source(334) == 334);
         scene.commit();
-        CHECK(distinct());
+        CHECK(names_distinct(scene));
     }
 
     TEST_CASE("coincident centres: split by index, ties at the centre") {
