@@ -178,7 +178,8 @@ void print_machine(unsigned long long seed, int repeats) {
     std::printf("- compiler: g++-compatible %s, build: %s\n", __VERSION__, build);
     std::printf(
         "- reference engine: the %s versions of its queries (chosen at run time; "
-        "RAYLAB_NO_AVX2=1 forces the baseline ones)\n",
+        "RAYLAB_NO_AVX512=1 forces at most the avx2 ones, RAYLAB_NO_AVX2=1 the "
+        "baseline)\n",
         reference::geometry_engine()->versions);
     // raylab's request, tried once on an array of its own
     std::vector<char> probe(2 * kHugePagesFrom, 1);

@@ -12,9 +12,10 @@
 #   g++     -O0, -O2 -DRAYLAB_NO_SIMD, -O3 -march=native
 #   clang++ -O0, -O2, -O3 -march=native
 # RAYLAB_NO_SIMD builds the scalar twins of the SSE2 code (raylab/simd.h), which must give
-# the same results. The builds for the baseline (-O0, -O2) also run the suite a second
-# time with RAYLAB_NO_AVX2=1, on the reference engine's baseline versions
-# (solutions/engine_simd.h), which a processor with AVX2 would not choose.
+# the same results. The builds for the baseline (-O0, -O2) also run the suite twice more,
+# with RAYLAB_NO_AVX512=1 and with RAYLAB_NO_AVX2=1, on the reference engine's AVX2 and
+# baseline versions (solutions/engine_simd.h), which a processor with AVX-512 would not
+# choose.
 # --quick: g++ -O2 -DRAYLAB_NO_SIMD and clang++ -O3 -march=native.
 # Build folders: build-stress/<compiler>-<flags>. Uses ccache when it is installed;
 # RAYLAB_STRESS_JOBS sets the build parallelism (default 2). Prints each configuration's
@@ -82,13 +83,15 @@ for config in "${configs[@]}"; do
             failed+=("$cxx $flags framework tests")
         fi
     fi
-    # A build for the baseline carries the engine's AVX2 versions too, which this
-    # machine's processor may choose: run again on the baseline ones
+    # A build for the baseline carries the engine's AVX2 and AVX-512 versions too, and
+    # this machine's processor chooses the widest it has: run again on the narrower ones
     if [[ "$flags" != *-march=native* && "$flags" != *RAYLAB_NO_SIMD* ]]; then
-        echo "== $cxx $flags, the engine's baseline versions (RAYLAB_NO_AVX2=1)"
-        if ! RAYLAB_NO_AVX2=1 "$dir/tests/stress/raylab-stress-tests" --no-intro; then
-            failed+=("$cxx $flags RAYLAB_NO_AVX2=1")
-        fi
+        for narrower in RAYLAB_NO_AVX512 RAYLAB_NO_AVX2; do
+            echo "== $cxx $flags, the engine's narrower versions ($narrower=1)"
+            if ! env "$narrower=1" "$dir/tests/stress/raylab-stress-tests" --no-intro; then
+                failed+=("$cxx $flags $narrower=1")
+            fi
+        done
     fi
     echo "== $cxx $flags: build $((built - start)) s, tests $((SECONDS - built)) s"
 done

@@ -127,7 +127,8 @@ RAYLAB_INLINE bool any_hit_query(const Scene& scene, const Ray& r,
     return any_hit_from<Avx>(scene, Primitives(scene), r, counters, hint);
 }
 
-// The queries compiled for the baseline and, on x86-64, for AVX2 (engine_simd.h)
+// The queries compiled for the baseline and, on x86-64, for AVX2 and AVX-512
+// (engine_simd.h)
 RAYLAB_ENGINE_VERSIONS(closest_hit_query, void, closest_hit_versions,
                        (const Scene& scene, const Ray& r, TraceCounters& counters,
                         Hit& hit, PrimRef& best),

@@ -262,7 +262,8 @@ RAYLAB_INLINE void packet_query(const Scene& scene, const Ray* rays, int n,
     }
 }
 
-// The query compiled for the baseline and, on x86-64, for AVX2 (engine_simd.h)
+// The query compiled for the baseline and, on x86-64, for AVX2 and AVX-512
+// (engine_simd.h)
 RAYLAB_ENGINE_VERSIONS(packet_query, void, packet_versions,
                        (const Scene& scene, const Ray* rays, int n,
                         TraceCounters& counters, Hit* hits, PrimRef* prims),

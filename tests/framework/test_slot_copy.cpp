@@ -96,14 +96,21 @@ TEST_SUITE("slot copy") {
 
 TEST_SUITE("engine versions") {
     // The engine's versions as solutions/engine_simd.h chooses them: on x86-64 built for
-    // the baseline, AVX2 where the processor has it unless RAYLAB_NO_AVX2 is set (the
-    // ctest run framework/engine-baseline-versions sets it), else the build's own
+    // the baseline, AVX-512 (x86-64-v4's subsets) where the processor has it unless
+    // RAYLAB_NO_AVX512 or RAYLAB_NO_AVX2 is set, AVX2 where it has that unless
+    // RAYLAB_NO_AVX2 is set (the ctest runs framework/engine-avx2-versions and
+    // engine-baseline-versions set them), else the build's own
     TEST_CASE("the engine names the versions it runs") {
         const std::string versions = reference::geometry_engine()->versions;
 #if defined(__x86_64__) && !defined(__AVX2__) && !defined(RAYLAB_NO_SIMD)
         const bool avx2 =
             __builtin_cpu_supports("avx2") && std::getenv("RAYLAB_NO_AVX2") == nullptr;
-        CHECK(versions == (avx2 ? "avx2" : "baseline"));
+        const bool avx512 =
+            avx2 && __builtin_cpu_supports("avx512f") &&
+            __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
+            __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512cd") &&
+            std::getenv("RAYLAB_NO_AVX512") == nullptr;
+        CHECK(versions == (avx512 ? "avx512" : avx2 ? "avx2" : "baseline"));
 #else
         CHECK(versions == "native");
 #endif

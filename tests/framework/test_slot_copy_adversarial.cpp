@@ -5,8 +5,8 @@
 // vertices and edges, spheres-only and triangles-only scenes at the limit, re-commits and
 // failed commits across it, copied and moved scenes, degenerate flags that come and go,
 // extreme radii, empty and tiny scenes, and packets at the limit. The suite is "slot
-// copy", so the ctest run framework/engine-baseline-versions (RAYLAB_NO_AVX2=1) repeats
-// it on the engine's baseline versions.
+// copy", so the ctest runs framework/engine-baseline-versions (RAYLAB_NO_AVX2=1) and
+// engine-avx2-versions (RAYLAB_NO_AVX512=1) repeat it on the engine's narrower versions.
 #include <doctest/doctest.h>
 
 #include <cmath>

@@ -59,9 +59,10 @@ struct GeometryEngine {
     void (*closest_hit_packet)(const Scene& scene, const Ray* rays, int n,
                                TraceCounters& counters, Hit* hits, PrimRef* prims);
     static constexpr int kPacketSize = 16;
-    /// Which compiled versions of the queries run: "avx2" or "baseline" (x86-64, chosen
-    /// once at start: AVX2 when the processor has it and the environment variable
-    /// RAYLAB_NO_AVX2 is not set), or "native" (a build whose own target decides, as
+    /// Which compiled versions of the queries run: "avx512", "avx2" or "baseline"
+    /// (x86-64, chosen once at start: the widest the processor has, AVX-512 meaning
+    /// x86-64-v4's subsets; the environment variable RAYLAB_NO_AVX512 rules out
+    /// "avx512", RAYLAB_NO_AVX2 both), or "native" (a build whose own target decides, as
     /// with -march=native, or -DRAYLAB_NO_SIMD).
     const char* versions;
 };
