@@ -24,7 +24,7 @@
 
 // On x86-64 the query is compiled three times, for the baseline (SSE2), AVX2 and AVX2
 // with AVX-512's registers, and the processor chooses at run time, as Embree does. The
-// same IEEE operations every way (-ffp-contract=off: no FMA, though clang's AVX-512
+// same IEEE operations every way (-ffp-contract=off: no FMA, though the AVX-512
 // target has it), so the same bits; tests/stress runs each (the stress matrix's
 // -march=native builds take the widest throughout, its -DRAYLAB_NO_SIMD build the
 // baseline, and its other builds run again with RAYLAB_NO_AVX2 and RAYLAB_NO_AVX512)
@@ -34,8 +34,14 @@
 #define RAYLAB_ENGINE_AVX2 0
 #endif
 #define RAYLAB_INLINE inline __attribute__((always_inline))
-// x86-64-v4's AVX-512 subsets, on top of AVX2
+// x86-64-v4's AVX-512 subsets, on top of AVX2; for GCC, vectors of at most 256 bits in
+// what it vectorises itself (it had made the packets' padding loop 512 bits wide)
+#if defined(__clang__)
 #define RAYLAB_ENGINE_AVX512_TARGET "avx2,avx512f,avx512vl,avx512bw,avx512dq,avx512cd"
+#else
+#define RAYLAB_ENGINE_AVX512_TARGET \
+    "avx2,avx512f,avx512vl,avx512bw,avx512dq,avx512cd,prefer-vector-width=256"
+#endif
 
 // RAYLAB_ENGINE_VERSIONS compiles QUERY<Avx>(ARGS), an always-inlined function
 // template, three times: for the baseline (Avx = false), for AVX2 (Avx = true), and for
