@@ -65,26 +65,23 @@
 // baseline and RAYLAB_NO_AVX512 at most AVX2, so that tests can run every version on one
 // machine (scripts/stress-matrix.sh and tests/framework's ctest runs do).
 #if RAYLAB_ENGINE_AVX2
-#define RAYLAB_ENGINE_VERSIONS(QUERY, RESULT, NAME, PARAMS, ARGS)          \
-    __attribute__((flatten)) RESULT NAME##_baseline PARAMS {               \
-        return QUERY<false> ARGS;                                          \
-    }                                                                      \
-    __attribute__((target("avx2"), flatten)) RESULT NAME##_avx2 PARAMS {   \
-        return QUERY<true> ARGS;                                           \
-    }                                                                      \
-    __attribute__((target(RAYLAB_ENGINE_AVX512_TARGET), flatten))          \
-    RESULT NAME##_avx512 PARAMS {                                          \
-        return QUERY<true> ARGS;                                           \
-    }                                                                      \
-    auto NAME##_chosen() {                                                 \
-        switch (::raylab::reference::engine_kernels::engine_level()) {     \
-            case ::raylab::reference::engine_kernels::EngineLevel::avx512: \
-                return &NAME##_avx512;                                     \
-            case ::raylab::reference::engine_kernels::EngineLevel::avx2:   \
-                return &NAME##_avx2;                                       \
-            default:                                                       \
-                return &NAME##_baseline;                                   \
-        }                                                                  \
+#define RAYLAB_ENGINE_VERSIONS(QUERY, RESULT, NAME, PARAMS, ARGS)                \
+    __attribute__((flatten)) RESULT NAME##_baseline PARAMS {                     \
+        return QUERY<false> ARGS;                                                \
+    }                                                                            \
+    __attribute__((target("avx2"), flatten)) RESULT NAME##_avx2 PARAMS {         \
+        return QUERY<true> ARGS;                                                 \
+    }                                                                            \
+    __attribute__((target(RAYLAB_ENGINE_AVX512_TARGET), flatten))                \
+    RESULT NAME##_avx512 PARAMS {                                                \
+        return QUERY<true> ARGS;                                                 \
+    }                                                                            \
+    auto NAME##_chosen() {                                                       \
+        /* by EngineLevel */                                                     \
+        decltype(&NAME##_baseline)                                               \
+            const versions[] = {&NAME##_baseline, &NAME##_avx2, &NAME##_avx512}; \
+        return versions[static_cast<int>(                                        \
+            ::raylab::reference::engine_kernels::engine_level())];               \
     }
 #else
 #define RAYLAB_ENGINE_VERSIONS(QUERY, RESULT, NAME, PARAMS, ARGS)           \
@@ -99,7 +96,9 @@
 namespace raylab::reference::engine_kernels {
 
 #if RAYLAB_ENGINE_AVX2
+// The versions, in the order of RAYLAB_ENGINE_VERSIONS's table and of their names
 enum class EngineLevel { baseline, avx2, avx512 };
+constexpr const char* kEngineLevelNames[] = {"baseline", "avx2", "avx512"};
 // The widest versions the processor runs, unless RAYLAB_NO_AVX2 or RAYLAB_NO_AVX512 asks
 // for less (__builtin_cpu_supports also asks whether the system saves the AVX-512
 // registers)
@@ -120,14 +119,7 @@ inline EngineLevel engine_level() {
 // The versions that run, as GeometryEngine::versions names them
 inline const char* engine_versions() {
 #if RAYLAB_ENGINE_AVX2
-    switch (engine_level()) {
-        case EngineLevel::avx512:
-            return "avx512";
-        case EngineLevel::avx2:
-            return "avx2";
-        default:
-            return "baseline";
-    }
+    return kEngineLevelNames[static_cast<int>(engine_level())];
 #else
     return "native";
 #endif
