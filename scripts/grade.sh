@@ -5,7 +5,7 @@
 # graders (tests/grading/) call that worker and decide every score.
 #
 # Usage: scripts/grade.sh [--reference] [--timeout SECONDS] [--points N] [--expect MODE]
-#                         [--private DIR]
+#                         [--private DIR] [--trusted]
 #   (also: ./scripts/dev.sh grade, make grade, make grade-reference)
 #   --reference        grade the reference solutions (solutions/) instead of exercises
 #   --timeout SECONDS  CPU time limit per module (default 10; its clock time may be 6 times
@@ -13,15 +13,22 @@
 #   --points N         points per module (default 10)
 #   --expect MODE      exit 1 unless the scores are as expected: full, not-started (for CI
 #                      and scripts/make-student-release.sh; see raylab-grade --help)
-#   --private DIR      the instructor's private cases (hidden tests; never in a release)
+#   --private DIR      the instructor's private cases (hidden tests; never in a release).
+#                      Never inside the hand-in; no student compile or process can read it
+#   --trusted          grade a SUBMISSION even where the hand-in's compile cannot be
+#                      confined (no bubblewrap, no Landlock): for hand-ins you trust only
 #
 # Environment:
 #   SUBMISSION=DIR     grade the NN_name.cpp files found in DIR (a student's unzipped
-#                      hand-in) instead of exercises/. For each module the shallowest
-#                      NN_name.cpp up to two folders deep is used (the report names it);
-#                      headers beside it are staged with it; CRLF line ends are accepted.
-#                      A missing file, or one that does not compile or link, scores zero
-#                      on its module with the compiler's message; the others are graded.
+#                      hand-in) instead of exercises/ (DIR may be a link to the folder).
+#                      For each module the shallowest NN_name.cpp up to two folders deep
+#                      is used (the report names it, and any other copy it ignored); the
+#                      .h/.hpp headers beside it are staged with it; CRLF line ends are
+#                      accepted. Only regular files are taken, never through a link, at
+#                      most 1 MiB each and 8 MiB in all: a link, FIFO, device or socket is
+#                      refused with a note naming it. A missing file, or one that does not
+#                      compile or link, scores zero on its module with the reason; the
+#                      others are graded.
 #   GRADE_OUT=DIR      where the reports go (default build/grade/): summary.txt, junit.xml,
 #                      results.json (Gradescope), logs/, images/
 #   GRADE_BUILD_DIR=DIR  the build of the trusted graders (default build-grade/), shared
@@ -30,9 +37,12 @@
 #   GRADE_COMPILE_MEMORY_MB=N  address space of the sandboxed compiler (default 2048; it
 #                      also gets 120 s of CPU and writes 64 MiB at most)
 #   RAYLAB_SANDBOX=none  compile and run the hand-in without bubblewrap, as happens where
-#                      it cannot start; as root the compiler and worker then run as nobody,
-#                      and solutions/, the graders' build and --private DIR are closed to
-#                      other users (chmod go-rwx)
+#                      it cannot start: the compile is then confined with Landlock to /usr,
+#                      the public headers and the staged hand-in (without Landlock a
+#                      SUBMISSION needs --trusted); as root the compiler and worker run as
+#                      nobody, solutions/, the graders' build and --private DIR are closed
+#                      to other users (chmod go-rwx), and nobody's SysV IPC objects are
+#                      removed after grading
 #
 # Several gradings may run at once (each has its own scratch folder; give each its own
 # GRADE_OUT). Exit status: 0 when grading ran (whatever the scores), 1 when it could not
@@ -52,6 +62,7 @@ COMPILE_MEMORY_MB=${GRADE_COMPILE_MEMORY_MB:-2048}
 points=${GRADE_POINTS:-10}
 private=${GRADE_PRIVATE:-}
 expect=''
+trusted=0
 while (($#)); do
     case $1 in
         --reference) reference=1 ;;
@@ -63,6 +74,7 @@ while (($#)); do
         --expect=*) expect=${1#*=} ;;
         --private) private=${2:?--private needs a value}; shift ;;
         --private=*) private=${1#*=} ;;
+        --trusted) trusted=1 ;;
         -h | --help) usage; exit 0 ;;
         *) usage >&2; die "unknown option '$1'" ;;
     esac
@@ -106,7 +118,15 @@ if ((reference)); then
 elif [[ -n ${SUBMISSION:-} ]]; then
     SOURCE=$(absolute "$SUBMISSION")
     [[ -d $SOURCE ]] || die "SUBMISSION=$SUBMISSION is not a folder"
+    # A link to the hand-in's folder (the instructor's choice, not the student's) is
+    # resolved: the hand-in is the folder it names
+    SOURCE=$(cd -P "$SOURCE" && pwd)
     label="submission $SOURCE"
+    if [[ -n $private ]]; then
+        p=$(cd -P "$private" && pwd)
+        [[ $p/ != "$SOURCE"/* && $SOURCE/ != "$p"/* ]] ||
+            die "--private $private and the hand-in $SOURCE must not contain each other"
+    fi
 else
     SOURCE=$RAYLAB_ROOT/exercises
     label="exercises/ ($SOURCE)"
@@ -116,7 +136,7 @@ fi
 # about grading: the sandbox's process list shows the worker's path
 SCRATCH=$(mktemp -d)
 trap 'rm -rf "$SCRATCH"' EXIT
-mkdir -p "$SCRATCH/stage" "$SCRATCH/obj" "$SCRATCH/workers" "$OUT"
+mkdir -p "$SCRATCH/stage" "$SCRATCH/obj" "$SCRATCH/out" "$SCRATCH/workers" "$OUT"
 rm -rf "$OUT/logs" "$OUT/images" "$OUT/build-errors" "$OUT/results.json" "$OUT/junit.xml" \
     "$OUT/summary.txt"
 mkdir -p "$OUT/logs" "$OUT/build-errors"
@@ -132,7 +152,7 @@ mkdir -p "$BUILD"
             -DRAYLAB_WITH_GUI=OFF -DRAYLAB_WERROR=OFF -DRAYLAB_EXERCISES_DIR="$FALLBACK" \
             >"$BUILD/configure.log" 2>&1 || { cat "$BUILD/configure.log"; exit 1; }
     fi
-    targets=(raylab-grading-tests raylab-grade raylab_worker_main raylab_core)
+    targets=(raylab-grading-tests raylab-grade raylab-sandbox raylab_worker_main raylab_core)
     ((reference)) && targets+=(raylab-worker-reference)
     ninja -C "$BUILD" "${targets[@]}" >"$BUILD/build.log" 2>&1 || { tail -n 40 "$BUILD/build.log"; exit 1; }
     # The stubs' objects, for the modules a worker does not take from the hand-in
@@ -153,6 +173,7 @@ CXX=$(readlink -f "$CXX") # /usr/bin/c++ leads through /etc/alternatives, outsid
 
 declare -A error=() # module -> file with the reason it scores zero
 declare -A used=()  # module -> the hand-in's file that was graded
+notes=()            # ID<TAB>text: what the student should know (ID "-": the hand-in)
 zero() {
     error[$1]=$OUT/build-errors/$1.txt
     printf '%s\n' "$2" >"${error[$1]}"
@@ -160,42 +181,40 @@ zero() {
 }
 # At most 8 KB of a log, read from a file (never a pipe that could SIGPIPE its writer)
 capped() { head -c 8000 "$1" | sed -e "s|$SCRATCH/stage/[^/]*/||g" -e 's|/hand-in/||g'; }
+# The compiler's lines about the hand-in's own files (the staged folder $2), indented, at
+# most 60 of 300 characters each; every other line (about a system header, or a file
+# outside the hand-in that a hostile #include named, with its contents) is only counted
+quoted() {
+    local own
+    own=$(cd "$2" && find . -maxdepth 1 -type f -printf '%f/')
+    sed -e "s|$SCRATCH/stage/[^/]*/||g" -e 's|/hand-in/||g' "$1" | awk -v files="$own" '
+        function show(s) { if (shown < 60) { print "    " substr(s, 1, 300); shown++ } else hidden++ }
+        BEGIN { n = split(files, f, "/"); for (i = 1; i <= n; i++) if (f[i] != "") own[f[i]] = 1 }
+        {
+            line = $0; sub(/^In file included from /, "", line); sub(/^ +from /, "", line)
+            name = line; sub(/:.*/, "", name)
+            # a source excerpt or caret line belongs to the diagnostic above it
+            if ($0 ~ /^ *[0-9]* *[|]/ || $0 ~ /^ +[+~^]/) { if (keep) show($0); else hidden++; next }
+            keep = (name in own) && line ~ /^[^:]+:/
+            if (keep) show($0); else hidden++
+        }
+        END { if (hidden) printf "    (%d more lines of compiler output not shown: not about the hand-in'"'"'s own files, or past the first 60)\n", hidden }'
+}
 
-# ---- Staging: each module's file and the headers beside it ------------------------------
+# ---- The sandbox: bubblewrap, or Landlock without namespaces -----------------------------
 
-if [[ -n $SOURCE ]]; then
-    step "Staging the exercise files of the $label"
-    for id in "${MODULES[@]}"; do
-        # The shallowest NN_name.cpp, at most two folders deep; ties by name
-        found=$(find "$SOURCE" -maxdepth 3 -name "$id.cpp" -type f -printf '%d\t%p\n' \
-            2>/dev/null | sort -t$'\t' -k1,1n -k2,2 | head -n 1 | cut -f2-) || true
-        if [[ -z $found ]]; then
-            zero "$id" "$id.cpp is missing from the hand-in"
-            continue
-        fi
-        used[$id]=${found#"$SOURCE"/}
-        dir=$SCRATCH/stage/$id
-        mkdir -p "$dir"
-        # Helper headers beside the file; CRLF line ends become LF
-        for f in "$found" "$(dirname "$found")"/*.h "$(dirname "$found")"/*.hpp; do
-            [[ -f $f ]] && sed 's/\r$//' "$f" >"$dir/$(basename "$f")"
-        done
-    done
-fi
-
-# ---- Compiling and linking one worker per module ----------------------------------------
-
-# bubblewrap with a user namespace; where the kernel refuses one (a chroot, some containers)
-# but we are root, the other namespaces without it and with every capability dropped (as
-# the worker's sandbox does, tests/grading/worker_client.cpp)
+# bubblewrap with a user namespace (the hand-in's compiler then runs as nobody inside it);
+# where the kernel refuses one (a chroot, some containers) but we are root, the other
+# namespaces without it and with every capability dropped (as the worker's sandbox does,
+# tests/grading/worker_client.cpp)
 sandbox=none
 namespaces=()
 # RAYLAB_SANDBOX=none (as for the worker, worker_client.cpp) grades without namespaces, as
 # where bubblewrap cannot start (Docker's default profile)
-for try in "--unshare-all" \
+for try in "--unshare-all --uid 65534 --gid 65534" \
     "--unshare-pid --unshare-net --unshare-ipc --unshare-uts --unshare-cgroup-try --cap-drop ALL"; do
     [[ ${RAYLAB_SANDBOX:-auto} != none ]] || break
-    [[ $try == --unshare-all || $EUID == 0 ]] || continue
+    [[ $try == --unshare-all* || $EUID == 0 ]] || continue
     read -ra namespaces <<<"$try"
     if bwrap "${namespaces[@]}" --die-with-parent --ro-bind /usr /usr --symlink usr/lib /lib \
         --symlink usr/lib64 /lib64 --symlink usr/bin /bin /usr/bin/true 2>/dev/null; then
@@ -203,48 +222,106 @@ for try in "--unshare-all" \
         break
     fi
 done
+# Without namespaces the compile is confined by Landlock and the worker by seccomp; where
+# either is missing, nothing keeps a hostile hand-in's compile from reading any file its
+# user may read, and a SUBMISSION is graded only when the instructor says it is trusted
+landlock=0
+"$SANDBOX" check && landlock=1
+if [[ $sandbox == none && -n $SOURCE && $SOURCE != "$RAYLAB_ROOT/exercises" ]]; then
+    missing=()
+    ((landlock)) || missing+=("Landlock (Linux 5.13 or later, enabled)")
+    [[ $LIBS == *-lseccomp* ]] || missing+=("libseccomp (scripts/install-deps.sh libs)")
+    if ((${#missing[@]})); then
+        msg="bubblewrap cannot start here and this machine lacks ${missing[*]}: a hand-in's compile could read any file its user can read"
+        ((trusted)) || die "$msg. Not grading an untrusted hand-in; pass --trusted to grade it anyway"
+        warn "$msg (graded anyway: --trusted)"
+    fi
+fi
+if [[ $sandbox == none && $EUID == 0 ]]; then
+    note "no namespaces here: the hand-in's compiler and worker run as nobody$( ((landlock)) && echo ', the compiler confined by Landlock')"
+fi
 
-# Compiles $1 (a staged file) to $2: in a sandbox that sees /usr, framework/include and
-# the staged folder only, so that no path leads to solutions/. The compiler gets the
-# limits of a worker too: an endless #include "/dev/zero" or a huge array would otherwise
-# take all the grading machine's memory or disk for the 120 s of its time limit
-compile() {
-    local src=$1 obj=$2 dir
-    dir=$(dirname "$src")
-    ulimit -v $((COMPILE_MEMORY_MB * 1024)) -f $((64 * 1024)) -t 120 -c 0
+# Runs COMMAND... where it sees /usr, the public headers (at /raylab/include), the folder
+# $1 read-only (at /hand-in) and $2 read-write (at /out): in bubblewrap, or else under
+# Landlock (as nobody when root). Standard input is /dev/null: a compile that reads
+# "/dev/stdin" gets nothing, and never what the grader's terminal types
+contained() {
+    local ro=$1 rw=$2
+    shift 2
     if [[ $sandbox == bwrap ]]; then
         bwrap "${namespaces[@]}" --die-with-parent --new-session --ro-bind /usr /usr \
             --symlink usr/lib /lib --symlink usr/lib64 /lib64 --symlink usr/bin /bin \
-            --ro-bind-try /etc/ld.so.cache /etc/ld.so.cache --proc /proc --dev /dev \
-            --tmpfs /tmp --ro-bind "$INCLUDE" /raylab/include --ro-bind "$dir" /hand-in \
-            --bind "$(dirname "$obj")" /out --chdir /hand-in --clearenv \
-            --setenv PATH /usr/bin \
-            timeout 120 "$CXX" $CXXFLAGS -I/raylab/include -c "/hand-in/$(basename "$src")" \
-            -o "/out/$(basename "$obj")"
+            --ro-bind-try /etc/ld.so.cache /etc/ld.so.cache --tmpfs /tmp \
+            --ro-bind "$INCLUDE" /raylab/include --ro-bind "$ro" /hand-in \
+            --bind "$rw" /out --chdir /hand-in --clearenv --setenv PATH /usr/bin \
+            --setenv TMPDIR /out "$@" </dev/null
+    else
+        local confine=() user=()
+        ((landlock)) && confine=("$SANDBOX" run --ro /usr --ro /etc/ld.so.cache \
+            --ro "$SCRATCH/include" --ro "$ro" --rw "$rw" --)
+        if ((EUID == 0)); then
+            chmod 755 "$SCRATCH" "$(dirname "$rw")"
+            chmod -R a+rX "$SCRATCH/include" "$ro"
+            chown 65534:65534 "$rw"
+            user=(setpriv --reuid=65534 --regid=65534 --clear-groups)
+        fi
+        (cd "$ro" && env -i PATH=/usr/bin HOME=/ TMPDIR="$rw" "${user[@]}" "${confine[@]}" \
+            "$@" </dev/null)
+    fi
+}
+
+# ---- Staging: each module's file and the headers beside it ------------------------------
+
+if [[ -n $SOURCE ]]; then
+    step "Staging the exercise files of the $label"
+    # raylab-sandbox stage opens nothing through a link and takes regular files only (see
+    # tests/grading/sandbox_main.cpp); in bubblewrap it sees the hand-in and the stage only
+    if [[ $sandbox == bwrap ]]; then
+        stage=(bwrap "${namespaces[@]}" --die-with-parent --new-session --ro-bind /usr /usr
+            --symlink usr/lib /lib --symlink usr/lib64 /lib64 --ro-bind "$SANDBOX" /stage-tool
+            --ro-bind-try /etc/ld.so.cache /etc/ld.so.cache --ro-bind "$SOURCE" /hand-in
+            --bind "$SCRATCH/stage" /stage --clearenv /stage-tool stage /hand-in /stage)
+    else
+        stage=("$SANDBOX" stage "$SOURCE" "$SCRATCH/stage")
+    fi
+    "${stage[@]}" "${MODULES[@]}" </dev/null >"$SCRATCH/staged.tsv" 2>"$SCRATCH/stage.log" ||
+        die "staging the hand-in failed: $(head -c 2000 "$SCRATCH/stage.log")"
+    while IFS=$'\t' read -r kind id text; do
+        case $kind in
+            used) used[$id]=$text ;;
+            missing) zero "$id" "$text" ;;
+            note) notes+=("$id"$'\t'"$text"); note "${id/#-/hand-in}: $text" ;;
+        esac
+    done <"$SCRATCH/staged.tsv"
+fi
+
+# ---- Compiling and linking one worker per module ----------------------------------------
+
+# Compiles $1 (a staged file) to $2, contained (above): no path leads to solutions/ or
+# any other file outside /usr, the public headers and the staged folder. The compiler
+# gets the limits of a worker too: an endless #include "/dev/zero" or a huge array would
+# otherwise take all the grading machine's memory or disk for the 120 s of its time limit
+compile() {
+    local src=$1 obj=$2 dir out
+    dir=$(dirname "$src")
+    ulimit -v $((COMPILE_MEMORY_MB * 1024)) -f $((64 * 1024)) -t 120 -c 0
+    out=$SCRATCH/out/$(basename "$obj" .o)
+    rm -rf "$out" && mkdir -p "$out"
+    if [[ $sandbox == bwrap ]]; then
+        # shellcheck disable=SC2086
+        contained "$dir" "$out" timeout 120 "$CXX" $CXXFLAGS -I/raylab/include \
+            -MD -MF /out/out.d -c "/hand-in/$(basename "$src")" -o /out/out.o || return
+        sed -e 's|/hand-in/|@HANDIN@/|g' -e 's|/raylab/include/|@INCLUDE@/|g' "$out/out.d" >"$obj.d"
     else
         # No namespaces: a copy of the headers, so that no relative path from the include
-        # folder reaches solutions/. An absolute path still would, for a compiler that
-        # may read it: as root the compiler runs as nobody, and solutions/ is closed to
-        # others (see below)
+        # folder reaches solutions/
         [[ -d $SCRATCH/include ]] || cp -r "$INCLUDE" "$SCRATCH/include"
-        if ((EUID == 0)); then
-            local out
-            out=$SCRATCH/nobody/$(basename "$obj" .o)
-            mkdir -p "$out"
-            chmod 755 "$SCRATCH" "$SCRATCH/stage" "$SCRATCH/nobody"
-            chmod -R a+rX "$SCRATCH/include" "$dir"
-            chown 65534:65534 "$out"
-            # shellcheck disable=SC2086
-            (cd "$dir" && timeout 120 env -i PATH=/usr/bin HOME=/ \
-                setpriv --reuid=65534 --regid=65534 --clear-groups \
-                "$CXX" $CXXFLAGS -I"$SCRATCH/include" -c "$src" -o "$out/out.o") &&
-                cp "$out/out.o" "$obj"
-        else
-            # shellcheck disable=SC2086
-            (cd "$dir" && timeout 120 env -i PATH=/usr/bin "$CXX" $CXXFLAGS \
-                -I"$SCRATCH/include" -c "$src" -o "$obj")
-        fi
+        # shellcheck disable=SC2086
+        contained "$dir" "$out" timeout 120 "$CXX" $CXXFLAGS -I"$SCRATCH/include" \
+            -MD -MF "$out/out.d" -c "$src" -o "$out/out.o" || return
+        sed -e "s|$dir/|@HANDIN@/|g" -e "s|$SCRATCH/include/|@INCLUDE@/|g" "$out/out.d" >"$obj.d"
     fi
+    cp "$out/out.o" "$obj"
 }
 
 # Without namespaces a root grader closes solutions/, its own build and the private
@@ -269,7 +346,7 @@ mkdir -p "$CACHE"
 find "$CACHE" -type f -mtime +30 -delete 2>/dev/null || true
 hash_files() { (cd "$1" && find . -type f -print0 | LC_ALL=C sort -z | xargs -0 -r sha256sum); }
 key_of() { sha256sum | cut -d' ' -f1; }
-TOOL_KEY=$({ "$CXX" --version; printf '%s\n' "$CXXFLAGS" "$sandbox" "compiled-as-nobody-when-root"; hash_files "$INCLUDE"; } | key_of)
+TOOL_KEY=$({ "$CXX" --version; printf '%s\n' "$CXXFLAGS" "$sandbox" "compiled-as-nobody-when-root" "$landlock"; hash_files "$INCLUDE"; } | key_of)
 LINK_KEY=$({ sha256sum "$BUILD"/stub-objects/*.o "$WORKER_MAIN" "$CORE" | cut -d' ' -f1
     printf '%s\n' "$LIBS" "$TOOL_KEY"; } | key_of)
 
@@ -278,12 +355,18 @@ from_cache() { [[ -s $CACHE/$1 ]] && touch "$CACHE/$1" && cp "$CACHE/$1" "$2"; }
 # Stores $2 as cache entry $1 (atomically: several gradings share the cache)
 to_cache() { cp "$2" "$CACHE/$1.$$" && mv -f "$CACHE/$1.$$" "$CACHE/$1"; }
 
-# compile (in a subshell: its limits stay there), through the cache
+# compile (in a subshell: its limits stay there), through the cache. Only a compile that
+# read nothing but the staged files, the public headers and the compiler's own headers is
+# stored: its object is exactly the one a new compile would make
 compile_cached() {
-    local key
-    key=$({ echo "$TOOL_KEY"; hash_files "$(dirname "$1")"; } | key_of).o
+    local key dir=${1%/*}
+    key=$({ echo "$TOOL_KEY"; hash_files "$dir"; } | key_of).o
     from_cache "$key" "$2" && return 0
-    (compile "$1" "$2") && to_cache "$key" "$2"
+    (compile "$1" "$2") || return
+    grep -rqE '\.incbin|#[[:space:]]*embed|__has_embed' "$dir" && return 0
+    tr ' \\' '\n\n' <"$2.d" | grep -v -e '^$' -e ':$' -e '^@HANDIN@/' -e '^@INCLUDE@/' \
+        -e '^/usr/include/' -e '^/usr/lib/gcc/' | grep -q . && return 0
+    to_cache "$key" "$2"
 }
 
 # Links worker $2 of module $1 from object $3 and the stubs of the other modules
@@ -312,15 +395,16 @@ else
         status=0
         compile_cached "$SCRATCH/stage/$id/$id.cpp" "$obj" >"$log" 2>&1 || status=$?
         if ((status != 0)); then
-            first=$(capped "$log" | grep -m 1 -E 'error|out of memory|memory exhausted') ||
-                first=$(capped "$log" | grep -m 1 .) ||
-                first="the compiler stopped (status $status) without a message"
+            quoted "$log" "$SCRATCH/stage/$id" >"$log.quoted"
+            first=$(grep -m 1 -E 'error|out of memory|memory exhausted' "$log.quoted") ||
+                first="the compiler stopped (status $status) without a message about the hand-in's files"
+            first=${first#"    "}
             if grep -q -E 'out of memory|memory exhausted|File size limit' "$log" ||
                 ((status == 124 || status > 128)); then
                 first="$first (the compiler's limits: $COMPILE_MEMORY_MB MiB of memory, 120 s, a 64 MiB object)"
             fi
             zero "$id" "$id.cpp does not compile: $first
-$(capped "$log")"
+$(cat "$log.quoted")"
             continue
         fi
         # The reference is never part of a hand-in: defined, included or called
@@ -367,6 +451,17 @@ args=(--tests "$BUILD/tests/grading/raylab-grading-tests" --out "$OUT" --timeout
 [[ -n $private ]] && args+=(--private "$private")
 for id in "${!error[@]}"; do args+=(--module-error "$id=${error[$id]}"); done
 for id in "${!used[@]}"; do args+=(--source "$id=${used[$id]}"); done
+for n in "${notes[@]}"; do args+=(--note "${n%%$'\t'*}=${n#*$'\t'}"); done
 
 step "Grading, one process per module (time limit ${timeout} s each)"
-"$BUILD/tests/grading/raylab-grade" "${args[@]}"
+status=0
+"$BUILD/tests/grading/raylab-grade" "${args[@]}" || status=$?
+# Without an IPC namespace, SysV objects a worker made as nobody would outlive it (the
+# worker's seccomp filter refuses them; this is the second line)
+if [[ $sandbox == none && $EUID == 0 ]] && have ipcs && have ipcrm; then
+    for kind in m s q; do
+        ipcs -"$kind" 2>/dev/null | awk '$3 == "nobody" && $2 ~ /^[0-9]+$/ { print $2 }' |
+            while read -r ipc; do ipcrm -"$kind" "$ipc" 2>/dev/null || true; done
+    done
+fi
+exit "$status"

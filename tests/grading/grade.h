@@ -24,6 +24,8 @@ struct Options {
     double points = 10.0;
     std::map<std::string, std::string> module_errors;  // ID -> file with the message
     std::map<std::string, std::string> sources;        // ID -> the hand-in's file graded
+    std::map<std::string, std::vector<std::string>>
+        notes;  // ID ("-": the hand-in) -> notes
 };
 
 /// The outcome of one test case.
@@ -42,6 +44,8 @@ struct ModuleResult {
     std::string build_error;
     std::string sandbox;  // how the worker was protected
     std::string source;   // the hand-in's file that was graded
+    std::string reason;   // why it lost points, in the words every report uses (reason())
+    std::vector<std::string> notes;
     int passed = 0;
     double score = 0.0, max_score = 0.0;
     double seconds = 0.0;
@@ -59,6 +63,14 @@ std::string first_line(const std::string& s);
 std::string shorten(const std::string& s, size_t n);
 /// Two decimals.
 std::string fixed(double x);
+/// x rounded to two decimals, as every report prints it (the total adds these).
+double rounded(double x);
+/// Why a module lost points, one wording for every report: "" (full marks), missing,
+/// refused, did not compile, did not link, not allowed, not started, crashed with signal
+/// SIGxxx, no answer in N s, NaN, wrong, grader error.
+std::string reason(const ModuleResult& m, double timeout);
+/// Every line of s indented by two spaces: student text never starts a report's line.
+std::string indented(const std::string& s);
 
 // grade_run.cpp
 /// The test case names of each suite (raylab-grading-tests --list-test-cases).

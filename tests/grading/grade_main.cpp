@@ -29,6 +29,7 @@ constexpr const char* kUsage = R"(Usage: raylab-grade --tests FILE --out DIR [op
   --points N            points per module (default 10)
   --module-error ID=FILE  module ID failed to build: score 0, FILE holds the message
   --source ID=FILE      the hand-in's file graded for module ID (for the reports)
+  --note ID=TEXT        a note for module ID's report (ID "-": the whole hand-in's)
   --workers DIR         DIR/NN_name is the worker (student code) graded for module NN_name
                         (default: the worker of this build's exercises/)
   --only ID             grade module ID only (the viewer's "Run tests" does this)
@@ -110,6 +111,11 @@ Options parse(int argc, char** argv) {
             const size_t eq = v.find('=');
             if (eq == std::string::npos) die("--source needs ID=FILE");
             o.sources[v.substr(0, eq)] = v.substr(eq + 1);
+        } else if (a == "--note") {
+            const std::string v = value();
+            const size_t eq = v.find('=');
+            if (eq == std::string::npos) die("--note needs ID=TEXT");
+            o.notes[v.substr(0, eq)].push_back(v.substr(eq + 1));
         } else if (a == "--workers") {
             o.workers = value();
         } else if (a == "--only") {
@@ -153,8 +159,18 @@ int main(int argc, char** argv) {
         const auto it = names.find(info.id);
         if (it == names.end()) die(std::string("the graders have no suite ") + info.id);
         modules.push_back(grade_module(o, info, it->second));
+        ModuleResult& m = modules.back();
+        m.score = rounded(m.score);
+        m.reason = reason(m, o.timeout);
+        if (const auto n = o.notes.find(info.id); n != o.notes.end()) m.notes = n->second;
     }
-    const std::string summary = clean_text(table(modules, o.label));
+    std::string summary = table(modules, o.label);
+    if (const auto n = o.notes.find("-"); n != o.notes.end()) {
+        summary += "\nnotes on the hand-in:\n";
+        for (const std::string& line : n->second)
+            summary += indented(line);
+    }
+    summary = clean_text(summary);
     std::cout << summary << std::flush;
     std::string details;
     for (const ModuleResult& m : modules)

@@ -2,7 +2,9 @@
 // the small helpers the driver's parts share.
 #include <sys/stat.h>
 
+#include <cctype>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -72,6 +74,61 @@ std::string fixed(double x) {
     return buf;
 }
 
+double rounded(double x) {
+    return std::round(x * 100.0) / 100.0;
+}
+
+std::string indented(const std::string& s) {
+    std::string out;
+    for (const std::string& line : split(s, '\n'))
+        out += "  " + line + "\n";
+    return out;
+}
+
+std::string reason(const ModuleResult& m, double timeout) {
+    if (m.status == "passed" && m.score == m.max_score) return "";
+    if (m.status == "build error") {
+        const std::string& f = m.first_failure;
+        const auto has = [&](const char* what) {
+            return f.find(what) != std::string::npos;
+        };
+        if (has("is missing")) return "missing";
+        if (has("is refused")) return "refused";
+        if (has("does not compile")) return "did not compile";
+        if (has("does not link")) return "did not link";
+        if (has("not allowed")) return "not allowed";
+        return "did not build";
+    }
+    if (m.status == "not started") return "not started";
+    if (m.status.rfind("crashed", 0) == 0) {
+        const size_t open = m.status.find('(');
+        return open == std::string::npos
+                   ? "crashed"
+                   : "crashed with signal " +
+                         m.status.substr(open + 1, m.status.size() - open - 2);
+    }
+    if (m.status == "time limit") {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "no answer in %g s", timeout);
+        return buf;
+    }
+    if (m.status == "error") return "grader error";
+    for (const CaseResult& c : m.cases) {
+        if (c.status == "pass") continue;
+        const std::string& t = c.message;
+        for (size_t at = t.find("nan"); at != std::string::npos;
+             at = t.find("nan", at + 1)) {
+            const bool word_start =
+                at == 0 || !std::isalpha(static_cast<unsigned char>(t[at - 1]));
+            const bool word_end = at + 3 >= t.size() ||
+                                  !std::isalpha(static_cast<unsigned char>(t[at + 3]));
+            if (word_start && word_end) return "NaN";
+        }
+        if (t.find("NaN") != std::string::npos) return "NaN";
+    }
+    return "wrong";
+}
+
 std::string pad(const std::string& s, size_t n) {
     return s.size() >= n ? s : s + std::string(n - s.size(), ' ');
 }
@@ -87,7 +144,9 @@ std::string table(const std::vector<ModuleResult>& modules, const std::string& l
             std::to_string(m.passed) + "/" + std::to_string(m.cases.size());
         s << pad(m.info->id, 16) << pad(tests, 8)
           << pad(fixed(m.score) + " / " + fixed(m.max_score), 14)
-          << (m.status == "passed" ? "-" : shorten(m.first_failure, 110)) << "\n";
+          << (m.reason.empty() ? "-"
+                               : shorten("[" + m.reason + "] " + m.first_failure, 110))
+          << "\n";
         total += m.score;
         max_total += m.max_score;
         passed += m.passed;
@@ -104,7 +163,7 @@ std::string module_output(const ModuleResult& m, size_t max_cases) {
     std::ostringstream s;
     s << m.info->id << " (" << m.info->title << "): " << m.passed << "/" << m.cases.size()
       << " tests passed, " << fixed(m.score) << " of " << fixed(m.max_score)
-      << " points [" << m.status << "]\n";
+      << " points [" << (m.reason.empty() ? m.status : m.reason) << "]\n";
     int hidden = 0, hidden_passed = 0;
     for (const CaseResult& c : m.cases) {
         if (c.name.rfind(kPrivate, 0) != 0) continue;
@@ -116,13 +175,15 @@ std::string module_output(const ModuleResult& m, size_t max_cases) {
           << m.cases.size() - hidden << " passed; private tests: " << hidden_passed << "/"
           << hidden << " passed\n";
     if (!m.source.empty()) s << "graded file: " << m.source << "\n";
+    for (const std::string& note : m.notes)
+        s << "note: " << note << "\n";
     if (!m.sandbox.empty()) s << "student code ran in: " << m.sandbox << "\n";
     if (!m.build_error.empty()) {
-        s << "\n" << shorten(m.build_error, 4000) << "\n";
+        s << "\n" << indented(shorten(m.build_error, 4000));
         return s.str();
     }
     if (m.status == "time limit" || m.status.rfind("crashed", 0) == 0)
-        s << m.first_failure << "\n";
+        s << indented(m.first_failure);
     if (m.status == "not started") {
         s << "Every test stopped at a function that still calls RAYLAB_STUB.\n";
         return s.str();
@@ -134,7 +195,7 @@ std::string module_output(const ModuleResult& m, size_t max_cases) {
             s << "(more failures in logs/" << m.info->id << ".log)\n";
             break;
         }
-        s << "\nFAILED: " << c.name << "\n  " << shorten(c.message, 1500) << "\n";
+        s << "\nFAILED: " << c.name << "\n" << indented(shorten(c.message, 1500));
     }
     return s.str();
 }
@@ -256,6 +317,7 @@ std::string cases_json(const std::vector<ModuleResult>& modules) {
                        {"passed", m.passed},
                        {"score", m.score},
                        {"max_score", m.max_score},
+                       {"reason", m.reason},
                        {"first_failure", clean_text(m.first_failure)},
                        {"build_error", clean_text(m.build_error)},
                        {"cases", cases}});
@@ -285,6 +347,11 @@ std::string results_json(const std::vector<ModuleResult>& modules,
     nlohmann::json tests = nlohmann::json::array();
     for (const ModuleResult& m : modules) {
         total += m.score;
+        nlohmann::json extra = part_points(m);
+        extra["reason"] = m.reason;
+        extra["notes"] = nlohmann::json::array();
+        for (const std::string& note : m.notes)
+            extra["notes"].push_back(clean_text(note));
         tests.push_back({
             {"name", std::string(m.info->id) + ": " + m.info->title},
             {"number", m.info->id},
@@ -293,11 +360,11 @@ std::string results_json(const std::vector<ModuleResult>& modules,
             {"status", m.status == "passed" ? "passed" : "failed"},
             {"visibility", "visible"},
             {"output", clean_text(module_output(m))},
-            {"extra_data", part_points(m)},
+            {"extra_data", extra},
         });
     }
     const nlohmann::json results = {
-        {"score", total},          {"output", clean_text(summary)},
+        {"score", rounded(total)}, {"output", clean_text(summary)},
         {"visibility", "visible"}, {"stdout_visibility", "hidden"},
         {"tests", tests},
     };

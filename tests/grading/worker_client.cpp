@@ -46,15 +46,14 @@ void limit(int resource, rlim_t value) {
 // that sees /usr and its own files only.
 bool root_namespaces = false;
 
+// Either way the worker is not root inside: nobody in its own user namespace, or (without
+// one) setpriv's nobody, which keeps no capability. --new-session and --unshare-ipc
+// (part of --unshare-all) keep it from the grader's terminal and SysV IPC objects.
 std::vector<std::string> namespace_args() {
-    if (!root_namespaces) return {"--unshare-all"};
-    return {"--unshare-pid",
-            "--unshare-net",
-            "--unshare-ipc",
-            "--unshare-uts",
-            "--unshare-cgroup-try",
-            "--cap-drop",
-            "ALL"};
+    if (!root_namespaces) return {"--unshare-all", "--uid", "65534", "--gid", "65534"};
+    return {"--unshare-pid",        "--unshare-net", "--unshare-ipc", "--unshare-uts",
+            "--unshare-cgroup-try", "--cap-drop",    "ALL",           "--cap-add",
+            "CAP_SETUID",           "--cap-add",     "CAP_SETGID"};
 }
 
 std::vector<std::string> bwrap_args(const std::string& worker) {
@@ -98,9 +97,14 @@ std::vector<std::string> bwrap_args(const std::string& worker) {
                                            "/tmp",
                                            "--setenv",
                                            "LANG",
-                                           "C.UTF-8",
-                                           "/worker/raylab-worker"};
+                                           "C.UTF-8"};
     args.insert(args.end(), rest.begin(), rest.end());
+    if (root_namespaces) {
+        for (const char* a :
+             {"/usr/bin/setpriv", "--reuid=65534", "--regid=65534", "--clear-groups"})
+            args.push_back(a);
+    }
+    args.push_back("/worker/raylab-worker");
     return args;
 }
 

@@ -12,10 +12,21 @@
 #   crlf          every file is handed in with CRLF line ends
 #   settle        wait 3 s after grading, then check that no report changed (a process
 #                 the hand-in left behind could rewrite them)
+#   link PATH TARGET  PATH in the hand-in is a symbolic link to TARGET
+#   fifo PATH     PATH in the hand-in is a FIFO
+#   big PATH KIB  PATH in the hand-in is a regular file of KIB KiB (a comment)
+#   note TEXT     the summary names TEXT (a note, a reason)
+#   absent REGEX  no line of summary.txt matches REGEX (student text posing as the grader's)
+#   via-link      SUBMISSION is a symbolic link to the hand-in's folder
+#   ipc           grading leaves no new SysV IPC object behind
+# Every hand-in is graded with a secret the grader can read and the student must never
+# see: a file (@SECRET@, world-readable), a copy of solutions/ in another world-readable
+# checkout (@OTHER@), the grader's environment and its standard input. No report may
+# contain the secret, nor the first line of /etc/shadow.
 # In the files, "// RAYLAB-HONEST-CODE ID" stands for an honest implementation (the
 # reference's code moved to namespace raylab::student), "@ROOT@" for the checkout and
 # "@OUT@" for the hand-in's report folder: a student may know both (on Gradescope they
-# are /autograder/source and /autograder/results).
+# are /autograder/source and /autograder/results); "@SECRET@" and "@OTHER@" as above.
 set -euo pipefail
 HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 ROOT=$(cd "$HERE/../../.." && pwd)
@@ -29,6 +40,13 @@ fi
 
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/raylab-handins.XXXXXX")
 trap 'rm -rf "$WORK"' EXIT
+chmod 755 "$WORK"
+SECRET=RAYLAB-SECRET-$(od -An -N8 -tx8 /dev/urandom | tr -d ' ')
+mkdir -p "$WORK/secret" "$WORK/other"
+printf '%s\n' "$SECRET" >"$WORK/secret/secret.txt"
+cp -r "$ROOT/solutions" "$WORK/other/solutions"
+chmod -R a+rX "$WORK/secret" "$WORK/other"
+shadow=$(head -n 1 /etc/shadow 2>/dev/null || true)
 
 # The source tree's fingerprint: nothing a hand-in does may change it
 fingerprint() {
@@ -48,9 +66,21 @@ materialize() {
                 "$ROOT/solutions/$id.cpp" >"$WORK/honest.cpp"
             sed -i -e "/^\/\/ RAYLAB-HONEST-CODE $id\$/{r $WORK/honest.cpp" -e 'd}' "$f"
         done
-        sed -i -e "s|@ROOT@|$ROOT|g" -e "s|@OUT@|$out|g" "$f"
+        sed -i -e "s|@ROOT@|$ROOT|g" -e "s|@OUT@|$out|g" -e "s|@SECRET@|$WORK/secret/secret.txt|g" \
+            -e "s|@OTHER@|$WORK/other|g" "$f"
         if grep -qx crlf "$src/expect"; then sed -i 's/$/\r/' "$f"; fi
     done < <(find "$dst" -type f -print0)
+    local kind path arg
+    while read -r kind path arg; do
+        arg=${arg//@ROOT@/$ROOT}
+        arg=${arg//@SECRET@/$WORK/secret/secret.txt}
+        arg=${arg//@OTHER@/$WORK/other}
+        case $kind in
+            link) mkdir -p "$(dirname "$dst/$path")"; ln -s "$arg" "$dst/$path" ;;
+            fifo) mkdir -p "$(dirname "$dst/$path")"; mkfifo "$dst/$path" ;;
+            big) head -c $((arg * 1024)) /dev/zero | tr '\0' '/' >"$dst/$path" ;;
+        esac
+    done <"$src/expect"
 }
 
 # The score of module $2 in the summary $1
@@ -64,15 +94,33 @@ for name in "${names[@]}"; do
     out=$WORK/out/$name
     materialize "$HERE/$name" "$WORK/$name" "$out"
     echo "==> $name"
-    if ! SUBMISSION=$WORK/$name GRADE_OUT=$out GRADE_BUILD_DIR=$BUILD \
-        "$ROOT/scripts/grade.sh" --timeout 8 >"$WORK/$name.log" 2>&1; then
+    submission=$WORK/$name
+    if grep -qx via-link "$HERE/$name/expect"; then
+        ln -s "$WORK/$name" "$WORK/$name.link"
+        submission=$WORK/$name.link
+    fi
+    ipc_before=$(ipcs 2>/dev/null | grep -c '^0x' || true)
+    if ! printf '%s\n' "$SECRET" | SUBMISSION=$submission GRADE_OUT=$out GRADE_BUILD_DIR=$BUILD \
+        RAYLAB_HANDIN_SECRET=$SECRET "$ROOT/scripts/grade.sh" --timeout 8 >"$WORK/$name.log" 2>&1; then
         echo "FAIL $name: grade.sh failed"; tail -n 20 "$WORK/$name.log"; failed=1; continue
     fi
     summary=$out/summary.txt
     results[$name]=$(sha1sum <"$out/results.json")
     while read -r id want; do
         case $id in
-            crlf | settle | '') continue ;;
+            crlf | settle | via-link | link | fifo | big | '') continue ;;
+            ipc)
+                [[ $(ipcs 2>/dev/null | grep -c '^0x' || true) == "$ipc_before" ]] ||
+                    { echo "FAIL $name: a SysV IPC object was left behind"; ipcs; failed=1; }
+                continue ;;
+            note)
+                grep -qF -- "$want" "$summary" ||
+                    { echo "FAIL $name: the summary does not say: $want"; failed=1; }
+                continue ;;
+            absent)
+                ! grep -qE -- "$want" "$summary" ||
+                    { echo "FAIL $name: summary.txt has a line matching $want"; failed=1; }
+                continue ;;
             graded)
                 grep -qF "graded file: $want" "$summary" ||
                     { echo "FAIL $name: the report does not name $want"; failed=1; }
@@ -86,6 +134,10 @@ for name in "${names[@]}"; do
             echo "FAIL $name: $id scored $got, expected $want"; failed=1
         fi
     done <"$HERE/$name/expect"
+    # Nothing from outside the hand-in reaches a report or a log
+    if grep -rqF -- "$SECRET" "$out" || { [[ -n $shadow ]] && grep -rqF -- "$shadow" "$out"; }; then
+        echo "FAIL $name: the secret reached $(grep -rlF -- "$SECRET" "$out" | head -n 3)"; failed=1
+    fi
     # Every other module: missing from the hand-in, so 0
     for id in $(awk '/^total/ { exit } NR > 3 && $1 ~ /^[0-9][0-9]_[a-z_0-9]+$/ { print $1 }' "$summary"); do
         grep -q "^$id " "$HERE/$name/expect" && continue

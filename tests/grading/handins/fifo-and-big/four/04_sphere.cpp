@@ -1,0 +1,2 @@
+#include "big.h"
+// RAYLAB-HONEST-CODE 04_sphere

@@ -1,0 +1,1 @@
+float helper_t() { return 1.0f; }
