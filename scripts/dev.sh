@@ -17,7 +17,7 @@
 #                      [--expect full|not-started]); env SUBMISSION=DIR grades a hand-in,
 #                      GRADE_OUT=DIR chooses where the reports go (default build/grade/)
 #   grade-reference    grade the reference solutions (scripts/grade.sh --reference)
-#   grade-class DIR [-j N]  grade every hand-in in DIR (scripts/grade-class.sh)
+#   grade-class DIR [-j N] [--out OUT]  grade every hand-in in DIR (scripts/grade-class.sh)
 #   gradescope OUT     make the Gradescope autograder package (scripts/make-gradescope.sh)
 #   release [OUT]      make the student release (scripts/make-student-release.sh)
 #   bench [ARGS]       build with Embree and run build/bench/raylab-bench ARGS
@@ -255,15 +255,26 @@ cmd_grade() {
 }
 
 cmd_grade_class() {
-    (($# >= 1)) || die "grade-class needs the folder of hand-ins: grade-class DIR [-j N]"
+    (($# >= 1)) || die "grade-class needs the folder of hand-ins: grade-class DIR [-j N] [--out OUT]"
     local dir=$1
     [[ -d $dir ]] || die "grade-class: '$dir' is not a folder"
-    case $# in
-        1) ;;
-        3) [[ $2 == -j && $3 =~ ^[1-9][0-9]{0,2}$ ]] ||
-            die "grade-class: expected -j N (N from 1 to 999), got: ${*:2}" ;;
-        *) die "grade-class takes DIR [-j N], got: $*" ;;
-    esac
+    # The options of scripts/grade-class.sh, checked before any build
+    local rest=("${@:2}")
+    while ((${#rest[@]})); do
+        case ${rest[0]} in
+            -j) [[ ${rest[1]:-} =~ ^[1-9][0-9]{0,2}$ ]] ||
+                die "grade-class: -j needs N from 1 to 999, got '${rest[1]:-}'"
+                rest=("${rest[@]:2}") ;;
+            --out | --private)
+                [[ -n ${rest[1]:-} ]] || die "grade-class: ${rest[0]} needs a folder"
+                rest=("${rest[@]:2}") ;;
+            --timeout | --points)
+                check_grade_args "${rest[0]}" "${rest[1]:-}"
+                rest=("${rest[@]:2}") ;;
+            --trusted) rest=("${rest[@]:1}") ;;
+            *) die "grade-class takes DIR [-j N] [--out OUT] [--timeout S] [--points N] [--private DIR] [--trusted], got: ${*:2}" ;;
+        esac
+    done
     install_deps build libs
     run_script scripts/grade-class.sh "$@"
 }

@@ -3,16 +3,23 @@
 # scripts/grade.sh, N students at a time, and writes a class table.
 #
 # Usage: scripts/grade-class.sh DIR [-j N] [--out OUT] [--timeout S] [--points N]
-#   (also: ./scripts/dev.sh grade-class DIR [-j N])
+#                               [--private DIR] [--trusted]
+#   (also: ./scripts/dev.sh grade-class DIR [-j N] [--out OUT])
 #   -j N          students graded at once (default 2)
 #   --out OUT     where the results go (default build/class/<name of DIR>); removed and
 #                 rewritten by each run
-#   --timeout S, --points N   passed to scripts/grade.sh
+#   --timeout S, --points N, --private DIR, --trusted   passed to scripts/grade.sh
 #
-# Writes OUT/class.csv and OUT/class.md (student, points per module, total, notes such as
-# "used sub/dir/04_sphere.cpp" or "04_sphere did not compile"), and per student
-# OUT/students/NAME/{results.json,junit.xml,summary.txt,grade.log}. One student's broken
-# build, crash or hang never stops the others. Two runs with different OUT folders run side
+# Writes OUT/class.csv and OUT/class.md (student, points per module, total, notes), and per
+# student OUT/students/NAME/{results.json,junit.xml,summary.txt,grade.log}. Every entry of
+# DIR that is a folder, or a link, gets one row: a link is refused (a note says so), a
+# name with a newline or another control character is shown escaped (\n). Every module
+# short of full marks has its reason in the notes, in the words of summary.txt ("04_sphere
+# missing", "03_plane did not compile", "05_triangle crashed with signal SIGSEGV",
+# "06_point_light no answer in 10 s", "07_lambert NaN", "08_shadows wrong"), then the
+# staging notes ("used sub/04_sphere.cpp", "ignored ...", "refused ..."). Points are
+# rounded to two decimals, as the total is. One student's broken build, crash or hang
+# never stops the others. Two runs with different OUT folders run side
 # by side; a second run on the same OUT stops at once with a message (a lock on OUT).
 #
 # Environment: GRADE_BUILD_DIR=DIR, the build of the trusted graders shared by every job
@@ -34,8 +41,8 @@ while (($#)); do
         -j*) jobs=${1#-j} ;;
         --out) out=${2:?--out needs a value}; shift ;;
         --out=*) out=${1#*=} ;;
-        --timeout | --points) grade_args+=("$1" "${2:?$1 needs a value}"); shift ;;
-        --timeout=* | --points=*) grade_args+=("$1") ;;
+        --timeout | --points | --private) grade_args+=("$1" "${2:?$1 needs a value}"); shift ;;
+        --timeout=* | --points=* | --private=* | --trusted) grade_args+=("$1") ;;
         -h | --help) usage; exit 0 ;;
         -*) usage >&2; die "unknown option '$1'" ;;
         *) [[ -z $class ]] || die "one class folder only (got '$class' and '$1')"; class=$1 ;;
@@ -60,8 +67,24 @@ mapfile -t MODULES < <(sed -n 's/^RAYLAB_MODULE([a-z_0-9]*, "\([0-9][0-9]_[a-z_0
     "$RAYLAB_ROOT/framework/include/raylab/modules.def")
 ((${#MODULES[@]})) || die "no modules in framework/include/raylab/modules.def"
 build=${GRADE_BUILD_DIR:-$RAYLAB_ROOT/build-grade}
-mapfile -t STUDENTS < <(find "$class" -mindepth 1 -maxdepth 1 -type d -printf '%f\n' | sort)
+# Every folder and link (a link is refused below), whatever its name
+mapfile -d '' -t STUDENTS < <(find "$class" -mindepth 1 -maxdepth 1 \( -type d -o -type l \) \
+    -printf '%f\0' | LC_ALL=C sort -z)
 ((${#STUDENTS[@]})) || die "$class has no hand-in folders"
+
+# NAME as the table and the output folder show it: control characters escaped
+shown() {
+    local s=${1//\\/\\\\}
+    s=${s//$'\n'/\\n}
+    s=${s//$'\t'/\\t}
+    s=${s//$'\r'/\\r}
+    printf '%s' "$s" | LC_ALL=C tr '\001-\037\177' '?'
+}
+declare -A SHOWN=()
+for name in "${STUDENTS[@]}"; do
+    SHOWN[$name]=$(shown "$name")
+    [[ ${SHOWN[$name]} != . && ${SHOWN[$name]} != .. ]] || SHOWN[$name]="_${SHOWN[$name]}"
+done
 
 # Old results go (and the per-job builds of older versions of this script)
 rm -rf "$out/students" "$out/class.csv" "$out/class.md" "$out/builds"
@@ -69,8 +92,14 @@ mkdir -p "$out/students"
 
 # Grades student $1; never fails
 grade_one() {
-    local name=$1 dest=$out/students/$1
+    local name=$1 dest=$out/students/${SHOWN[$1]}
     mkdir -p "$dest"
+    if [[ -L $class/$name ]]; then
+        # Another student's folder, or one outside the class: never graded in its place
+        echo "refused: the hand-in is a symbolic link (to $(shown "$(readlink "$class/$name")")), not a folder" \
+            >"$dest/failure.txt"
+        return 0
+    fi
     if ! SUBMISSION="$class/$name" GRADE_OUT="$dest" GRADE_BUILD_DIR="$build" \
         "$RAYLAB_ROOT/scripts/grade.sh" "${grade_args[@]}" </dev/null >"$dest/grade.log" 2>&1; then
         echo "grade.sh failed: $(grep -m 1 'error' "$dest/grade.log" || tail -n 1 "$dest/grade.log")" \
@@ -86,44 +115,40 @@ for ((k = 0; k < jobs; k++)); do
     (
         for ((i = k; i < ${#STUDENTS[@]}; i += jobs)); do
             grade_one "${STUDENTS[i]}"
-            note "${STUDENTS[i]}: done"
+            note "${SHOWN[${STUDENTS[i]}]}: done"
         done
     ) &
     pids+=($!)
 done
 for pid in "${pids[@]}"; do wait "$pid" || true; done
 
-# Notes for one student: nested files used, modules that scored zero without running
+# Notes for one student: why each module lost points (the reports' words), then what
+# staging noted (files used from folders, files ignored or refused)
 student_notes() {
-    local name=$1 dest=$out/students/$1 id found rel first
-    local notes=()
-    for id in "${MODULES[@]}"; do
-        found=$(find "$class/$name" -maxdepth 3 -name "$id.cpp" -type f -printf '%d %P\n' \
-            2>/dev/null | sort -n | head -n 1 | cut -d' ' -f2-)
-        [[ -n $found && $found == */* ]] && notes+=("used $found")
-        if [[ -f $dest/build-errors/$id.txt ]]; then
-            first=$(head -n 1 "$dest/build-errors/$id.txt")
-            case $first in
-                *"is missing"*) notes+=("$id missing") ;;
-                *"does not compile"*) notes+=("$id did not compile") ;;
-                *"does not link"*) notes+=("$id did not link") ;;
-                *) notes+=("$id: ${first:0:80}") ;;
-            esac
-        fi
-    done
+    local dest=$out/students/${SHOWN[$1]} notes=()
     [[ -f $dest/failure.txt ]] && notes+=("$(head -n 1 "$dest/failure.txt")")
-    [[ -f $dest/results.json ]] || notes+=("no results")
+    if [[ -f $dest/results.json ]]; then
+        mapfile -t -O "${#notes[@]}" notes < <(jq -r '
+            (.tests[] | select(.extra_data.reason != "") | "\(.number) \(.extra_data.reason)"),
+            (.tests[] | (.output | capture("graded file: (?<f>[^\n]*/[^\n]*)").f // empty
+                | "used \(.)")),
+            (.tests[] | .extra_data.notes[]), (.extra_data.notes // [] | .[])' \
+            "$dest/results.json" 2>/dev/null)
+    elif [[ ! -f $dest/failure.txt ]]; then
+        notes+=("no results")
+    fi
     local IFS=';'
     printf '%s' "${notes[*]}" | sed 's/;/; /g'
 }
 
-# Points of module $2 in student $1's results.json (empty when there is none)
+# Points of module $2 in student $1's results.json (empty when there is none), rounded as
+# the reports round them
 points_of() {
-    local results=$out/students/$1/results.json
+    local results=$out/students/${SHOWN[$1]}/results.json
     [[ -f $results ]] || return 0
     jq -r --arg id "$2" \
-        '[.tests[] | select(.name | startswith($id + ":")) | .score] | add // 0' "$results" ||
-        die "cannot read $results"
+        '[.tests[] | select(.name | startswith($id + ":")) | .score] | add // 0 |
+         . * 100 | round / 100' "$results" || die "cannot read $results"
 }
 
 step "Writing the class table"
@@ -146,17 +171,19 @@ for name in "${STUDENTS[@]}"; do
         p=$(points_of "$name" "$id")
         p=${p:-0}
         row+=("$p")
-        total=$(awk -v a="$total" -v b="$p" 'BEGIN { print a + b }')
+        total=$(awk -v a="$total" -v b="$p" 'BEGIN { printf "%.2f", a + b }')
     done
     notes=$(student_notes "$name")
+    total=$(awk -v t="$total" 'BEGIN { print t + 0 }')
+    shown_name=${SHOWN[$name]}
     {
         # A folder name with a comma or a quote is quoted (RFC 4180)
-        if [[ $name == *[,\"]* ]]; then printf '"%s"' "${name//\"/\"\"}"; else printf '%s' "$name"; fi
+        if [[ $shown_name == *[,\"]* ]]; then printf '"%s"' "${shown_name//\"/\"\"}"; else printf '%s' "$shown_name"; fi
         printf ',%s' "${row[@]}"
         printf ',%s,"%s"\n' "$total" "${notes//\"/\"\"}"
     } >>"$csv"
     {
-        printf '| %s |' "${name//|/\\|}"
+        printf '| %s |' "${shown_name//|/\\|}"
         printf ' %s |' "${row[@]}"
         printf ' %s | %s |\n' "$total" "${notes//|/\\|}"
     } >>"$md"

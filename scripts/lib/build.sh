@@ -80,8 +80,11 @@ check_grade_args() {
                 [[ ${2:-} == full || ${2:-} == not-started ]] ||
                     die "grade: --expect needs full or not-started, got '${2:-}'"
                 shift ;;
-            --reference) ;;
-            *) die "grade: unknown argument '$1' (--timeout S, --points N, --expect full|not-started)" ;;
+            --private)
+                [[ -d ${2:-} ]] || die "grade: --private needs a folder, got '${2:-}'"
+                shift ;;
+            --reference | --trusted) ;;
+            *) die "grade: unknown argument '$1' (--timeout S, --points N, --expect full|not-started, --private DIR, --trusted)" ;;
         esac
         shift
     done

@@ -7,6 +7,8 @@
 #  2. handins/public-view-only (a camera right only for the public DTU view; without
 #     --private it scores 10, ctest grading/adversarial/public-view-only) loses exactly
 #     its private points with the same seed: 0/1 private, full public points.
+#  3. A hand-in that reaches for the seed (a header linked to it, an absolute #include, an
+#     .incbin) scores zero on those modules, and the seed reaches no report or log.
 # Usage: check_private.sh ROOT WORKDIR      (env GRADE_BUILD_DIR: the graders' build)
 set -uo pipefail
 root=$1 work=$2
@@ -30,6 +32,21 @@ sed -e "/^\/\/ RAYLAB-HONEST-CODE 02_camera\$/{r $work/honest.cpp" -e 'd}' \
 grade "$work/reference" --reference
 SUBMISSION=$work/handin grade "$work/handin-out"
 
+mkdir -p "$work/thief"
+ln -s "$work/private/seed" "$work/thief/seed.h"
+printf '#include "seed.h"\n' >"$work/thief/03_plane.cpp"
+printf '#include "%s"\n' "$work/private/seed" >"$work/thief/04_sphere.cpp"
+printf 'asm(".incbin \\"%s\\"");\n' "$work/private/seed" >"$work/thief/05_triangle.cpp"
+SUBMISSION=$work/thief grade "$work/thief-out"
+for id in 03_plane 04_sphere 05_triangle; do
+    grep -q "^$id .* 0\.00 / " "$work/thief-out/summary.txt" ||
+        { echo "FAIL: the seed thief's $id did not score 0"; fail=1; }
+done
+if grep -rq 424242 "$work/thief-out" "$work/thief-out.log"; then
+    echo "FAIL: the private seed reached $(grep -rl 424242 "$work/thief-out" "$work/thief-out.log")"
+    fail=1
+fi
+
 python3 - "$work" <<'PY' || fail=1
 import json, re, sys
 work = sys.argv[1]
@@ -49,7 +66,7 @@ for m in hidden:
     t, e = tests[m], tests[m]["extra_data"]
     check(e["private_cases"] == 1, f"{m}: {e['private_cases']} private cases, want 1")
     check(e["private_points"] > 0, f"reference {m}: no private points")
-    check(abs(e["public_points"] + e["private_points"] - t["score"]) < 1e-9,
+    check(abs(e["public_points"] + e["private_points"] - t["score"]) < 0.006,
           f"reference {m}: public + private points != score")
     check("private tests: 1/1 passed" in t["output"],
           f"reference {m}: results.json output lacks 'private tests: 1/1 passed'")
@@ -61,7 +78,7 @@ tests, r, summary = parts("handin-out")
 t, e = tests["02_camera"], tests["02_camera"]["extra_data"]
 n = e["public_cases"] + e["private_cases"]
 check(e["private_points"] == 0, f"public-view-only: {e['private_points']} private points")
-check(abs(e["public_points"] - t["max_score"] * e["public_cases"] / n) < 1e-9,
+check(abs(e["public_points"] - t["max_score"] * e["public_cases"] / n) < 0.006,
       f"public-view-only: public points {e['public_points']}, want all of them")
 check(t["score"] < t["max_score"], f"public-view-only scores {t['score']}, full marks")
 check(re.search(r"private tests: 0/1 passed", t["output"]) is not None,

@@ -91,8 +91,10 @@ std::string module_output(const ModuleResult& m, size_t max_cases = 12);
 std::string junit(const std::vector<ModuleResult>& modules);
 /// Every case of every module with its status and message, for the viewer's "Run tests".
 std::string cases_json(const std::vector<ModuleResult>& modules);
-/// Gradescope's results.json: score, output, and one test per module.
+/// Gradescope's results.json: score, output, one test per module (extra_data: its reason
+/// and notes), and the notes on the whole hand-in (extra_data.notes).
 std::string results_json(const std::vector<ModuleResult>& modules,
-                         const std::string& summary);
+                         const std::string& summary,
+                         const std::vector<std::string>& hand_in_notes);
 
 }  // namespace raylab::grade

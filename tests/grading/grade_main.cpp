@@ -178,7 +178,11 @@ int main(int argc, char** argv) {
     write_file(o.out + "/summary.txt", summary + details);
     write_file(o.out + "/junit.xml", junit(modules));
     write_file(o.out + "/cases.json", cases_json(modules));
-    write_file(o.out + "/results.json", results_json(modules, summary));
+    const auto hand_in = o.notes.find("-");
+    write_file(o.out + "/results.json",
+               results_json(modules, summary,
+                            hand_in == o.notes.end() ? std::vector<std::string>{}
+                                                     : hand_in->second));
     std::cout << "\nDetails: " << o.out << "/summary.txt; JUnit: " << o.out
               << "/junit.xml; Gradescope: " << o.out << "/results.json\n";
     if (!o.expect.empty()) return check_expectation(o, modules) ? 0 : 1;

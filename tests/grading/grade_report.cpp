@@ -341,7 +341,8 @@ nlohmann::json part_points(const ModuleResult& m) {
 }
 
 std::string results_json(const std::vector<ModuleResult>& modules,
-                         const std::string& summary) {
+                         const std::string& summary,
+                         const std::vector<std::string>& hand_in_notes) {
     // Gradescope's format: https://gradescope-autograders.readthedocs.io/en/latest/specs/
     double total = 0;
     nlohmann::json tests = nlohmann::json::array();
@@ -363,10 +364,13 @@ std::string results_json(const std::vector<ModuleResult>& modules,
             {"extra_data", extra},
         });
     }
+    nlohmann::json notes = nlohmann::json::array();
+    for (const std::string& note : hand_in_notes)
+        notes.push_back(clean_text(note));
     const nlohmann::json results = {
         {"score", rounded(total)}, {"output", clean_text(summary)},
         {"visibility", "visible"}, {"stdout_visibility", "hidden"},
-        {"tests", tests},
+        {"tests", tests},          {"extra_data", {{"notes", notes}}},
     };
     // clean_text made every string valid UTF-8; replace guards against a slip anyway
     return results.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
