@@ -43,6 +43,7 @@
 #                      nobody, solutions/, the graders' build and --private DIR are closed
 #                      to other users (chmod go-rwx), and nobody's SysV IPC objects are
 #                      removed after grading
+#   RAYLAB_LANDLOCK=off  do not use Landlock (to see what a machine without it does)
 #
 # Several gradings may run at once (each has its own scratch folder; give each its own
 # GRADE_OUT). Exit status: 0 when grading ran (whatever the scores), 1 when it could not
@@ -226,7 +227,7 @@ done
 # either is missing, nothing keeps a hostile hand-in's compile from reading any file its
 # user may read, and a SUBMISSION is graded only when the instructor says it is trusted
 landlock=0
-"$SANDBOX" check && landlock=1
+[[ ${RAYLAB_LANDLOCK:-auto} == off ]] || ! "$SANDBOX" check || landlock=1
 if [[ $sandbox == none && -n $SOURCE && $SOURCE != "$RAYLAB_ROOT/exercises" ]]; then
     missing=()
     ((landlock)) || missing+=("Landlock (Linux 5.13 or later, enabled)")
@@ -369,16 +370,24 @@ compile_cached() {
     to_cache "$key" "$2"
 }
 
-# Links worker $2 of module $1 from object $3 and the stubs of the other modules
+declare -A compiled=() # module -> its object, compiled and checked
+# Links worker $2 of module $1 from object $3 and, for the other modules, the hand-in's
+# own objects where they compiled ($4 = own: a module that calls the student's earlier
+# modules gets the student's code for them, as in the viewer) or the stubs ($4 = stubs)
 link_cached() {
-    local id=$1 worker=$2 obj=$3 key other stubs=()
-    key=$({ echo "$LINK_KEY $id"; sha256sum <"$obj"; } | key_of).worker
-    from_cache "$key" "$worker" && return 0
+    local id=$1 worker=$2 obj=$3 mode=$4 key other others=()
     for other in "${MODULES[@]}"; do
-        [[ $other == "$id" ]] || stubs+=("$BUILD/stub-objects/$other.o")
+        [[ $other == "$id" ]] && continue
+        if [[ $mode == own && -n ${compiled[$other]:-} ]]; then
+            others+=("${compiled[$other]}")
+        else
+            others+=("$BUILD/stub-objects/$other.o")
+        fi
     done
+    key=$({ echo "$LINK_KEY $id"; cat "$obj" "${others[@]}" | sha256sum; } | key_of).worker
+    from_cache "$key" "$worker" && return 0
     # shellcheck disable=SC2086
-    "$CXX" -o "$worker" "$obj" "${stubs[@]}" "$WORKER_MAIN" "$CORE" $LIBS && to_cache "$key" "$worker"
+    "$CXX" -o "$worker" "$obj" "${others[@]}" "$WORKER_MAIN" "$CORE" $LIBS && to_cache "$key" "$worker"
 }
 
 if ((reference)); then
@@ -434,9 +443,17 @@ $(cat "$log.quoted")"
             zero "$id" "$id.cpp has code that would run before the grader's sandbox is complete ($early): constructor priorities, .init sections, ifuncs and definitions of C library or C++ runtime functions are not allowed"
             continue
         fi
-        if ! link_cached "$id" "$SCRATCH/workers/$id" "$obj" >"$log" 2>&1; then
+        compiled[$id]=$obj
+    done
+    for id in "${MODULES[@]}"; do
+        [[ -n ${compiled[$id]:-} ]] || continue
+        log=$SCRATCH/obj/$id.log
+        # With the hand-in's other modules; where they clash (a function defined in two
+        # files), with the stubs
+        link_cached "$id" "$SCRATCH/workers/$id" "${compiled[$id]}" own >"$log" 2>&1 && continue
+        if ! link_cached "$id" "$SCRATCH/workers/$id" "${compiled[$id]}" stubs >"$log" 2>&1; then
             zero "$id" "$id.cpp does not link with the framework (is a function missing, defined with another signature, or defined twice?)
-$(capped "$log" | grep -e 'undefined reference' -e 'multiple definition' -e 'error' | head -n 20)"
+$(capped "$log" | grep -e 'undefined reference' -e 'multiple definition' -e 'error' | head -n 20 | sed 's/^/    /')"
         fi
     done
 fi

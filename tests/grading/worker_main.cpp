@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
+#include <system_error>
 #include <thread>
 #include <tuple>
 
@@ -317,6 +318,13 @@ void answer(const Header& h, Buffer& in) {
         inject(h.flags);
         stub::called.store(0);
         dispatch(h.function, in, out);
+    } catch (const std::system_error& e) {
+        error = e.what();
+        // std::thread's error where the filter refuses clone: say why
+        if (e.code() == std::errc::resource_unavailable_try_again)
+            error +=
+                " (the grader runs your code on one thread: std::thread and other "
+                "threads cannot start here, though the viewer runs them)";
     } catch (const std::exception& e) {
         error = e.what();
     } catch (...) {

@@ -19,6 +19,8 @@
 #   absent REGEX  no line of summary.txt matches REGEX (student text posing as the grader's)
 #   via-link      SUBMISSION is a symbolic link to the hand-in's folder
 #   ipc           grading leaves no new SysV IPC object behind
+#   unconfined    without namespaces and without Landlock, grade.sh refuses the hand-in
+#                 unless --trusted; graded then with --trusted
 # Every hand-in is graded with a secret the grader can read and the student must never
 # see: a file (@SECRET@, world-readable), a copy of solutions/ in another world-readable
 # checkout (@OTHER@), the grader's environment and its standard input. No report may
@@ -100,15 +102,25 @@ for name in "${names[@]}"; do
         submission=$WORK/$name.link
     fi
     ipc_before=$(ipcs 2>/dev/null | grep -c '^0x' || true)
+    extra=() envs=()
+    if grep -qx unconfined "$HERE/$name/expect"; then
+        if SUBMISSION=$submission GRADE_OUT=$out GRADE_BUILD_DIR=$BUILD RAYLAB_SANDBOX=none \
+            RAYLAB_LANDLOCK=off "$ROOT/scripts/grade.sh" </dev/null >"$WORK/$name.refused" 2>&1 ||
+            ! grep -q 'pass --trusted' "$WORK/$name.refused"; then
+            echo "FAIL $name: graded without confinement and without --trusted"; failed=1
+        fi
+        extra=(--trusted) envs=(RAYLAB_SANDBOX=none RAYLAB_LANDLOCK=off)
+    fi
     if ! printf '%s\n' "$SECRET" | SUBMISSION=$submission GRADE_OUT=$out GRADE_BUILD_DIR=$BUILD \
-        RAYLAB_HANDIN_SECRET=$SECRET "$ROOT/scripts/grade.sh" --timeout 8 >"$WORK/$name.log" 2>&1; then
+        RAYLAB_HANDIN_SECRET=$SECRET env "${envs[@]}" \
+        "$ROOT/scripts/grade.sh" --timeout 8 "${extra[@]}" >"$WORK/$name.log" 2>&1; then
         echo "FAIL $name: grade.sh failed"; tail -n 20 "$WORK/$name.log"; failed=1; continue
     fi
     summary=$out/summary.txt
     results[$name]=$(sha1sum <"$out/results.json")
     while read -r id want; do
         case $id in
-            crlf | settle | via-link | link | fifo | big | '') continue ;;
+            crlf | settle | via-link | unconfined | link | fifo | big | '') continue ;;
             ipc)
                 [[ $(ipcs 2>/dev/null | grep -c '^0x' || true) == "$ipc_before" ]] ||
                     { echo "FAIL $name: a SysV IPC object was left behind"; ipcs; failed=1; }

@@ -1,0 +1,1 @@
+// RAYLAB-HONEST-CODE 06_point_light

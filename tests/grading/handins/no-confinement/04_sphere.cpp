@@ -1,0 +1,1 @@
+// RAYLAB-HONEST-CODE 04_sphere
