@@ -371,14 +371,33 @@ compile_cached() {
 }
 
 declare -A compiled=() # module -> its object, compiled and checked
-# Links worker $2 of module $1 from object $3 and, for the other modules, the hand-in's
-# own objects where they compiled ($4 = own: a module that calls the student's earlier
-# modules gets the student's code for them, as in the viewer) or the stubs ($4 = stubs)
+# The functions object $1 calls but does not define; and those it defines
+calls() { nm -u --format=posix "$1" | awk '{ print $1 }' | sort -u; }
+defines() { nm --defined-only --format=posix "$1" | awk '$2 ~ /^[TWtwVv]$/ { print $1 }' | sort -u; }
+
+# Links worker $2 of module $1 from object $3 and, for the other modules, the stubs
+# ($4 = stubs) or ($4 = own) the hand-in's own objects of the modules it calls, directly
+# or through another (a module built on the student's earlier modules gets the student's
+# code for them, as in the viewer); a module it does not call stays a stub, so that its
+# static initializers do not run in this module's worker
 link_cached() {
-    local id=$1 worker=$2 obj=$3 mode=$4 key other others=()
+    local id=$1 worker=$2 obj=$3 mode=$4 key other others=() grown=1
+    declare -A own=([$id]=1)
+    while [[ $mode == own ]] && ((grown)); do
+        grown=0
+        for other in "${!own[@]}"; do
+            [[ $other == "$id" ]] && calls "$obj" || calls "${compiled[$other]}"
+        done | sort -u >"$obj.calls"
+        for other in "${MODULES[@]}"; do
+            [[ -n ${own[$other]:-} || -z ${compiled[$other]:-} ]] && continue
+            if defines "${compiled[$other]}" | comm -12 - "$obj.calls" | grep -q .; then
+                own[$other]=1 grown=1
+            fi
+        done
+    done
     for other in "${MODULES[@]}"; do
         [[ $other == "$id" ]] && continue
-        if [[ $mode == own && -n ${compiled[$other]:-} ]]; then
+        if [[ -n ${own[$other]:-} ]]; then
             others+=("${compiled[$other]}")
         else
             others+=("$BUILD/stub-objects/$other.o")
@@ -406,7 +425,11 @@ else
         if ((status != 0)); then
             quoted "$log" "$SCRATCH/stage/$id" >"$log.quoted"
             first=$(grep -m 1 -E 'error|out of memory|memory exhausted' "$log.quoted") ||
-                first="the compiler stopped (status $status) without a message about the hand-in's files"
+                if grep -q '^{standard input}: Assembler messages' "$log"; then
+                    first="the assembler stopped: an asm statement (.incbin of a file outside the hand-in?)"
+                else
+                    first="the compiler stopped (status $status) without a message about the hand-in's files"
+                fi
             first=${first#"    "}
             if grep -q -E 'out of memory|memory exhausted|File size limit' "$log" ||
                 ((status == 124 || status > 128)); then
