@@ -18,7 +18,8 @@
 #   note TEXT     the summary names TEXT (a note, a reason)
 #   absent REGEX  no line of summary.txt matches REGEX (student text posing as the grader's)
 #   via-link      SUBMISSION is a symbolic link to the hand-in's folder
-#   ipc           grading leaves no new SysV IPC object behind
+#   ipc           grading leaves no new 256 MiB SysV shared-memory segment behind (the
+#                 size the hand-in asks for: other programs on the machine use SysV IPC too)
 #   unconfined    without namespaces and without Landlock, grade.sh refuses the hand-in
 #                 unless --trusted; graded then with --trusted
 # Every hand-in is graded with a secret the grader can read and the student must never
@@ -101,7 +102,7 @@ for name in "${names[@]}"; do
         ln -s "$WORK/$name" "$WORK/$name.link"
         submission=$WORK/$name.link
     fi
-    ipc_before=$(ipcs 2>/dev/null | grep -c '^0x' || true)
+    ipc_before=$(ipcs -m 2>/dev/null | awk '$5 == 268435456' | wc -l)
     extra=() envs=()
     if grep -qx unconfined "$HERE/$name/expect"; then
         if SUBMISSION=$submission GRADE_OUT=$out GRADE_BUILD_DIR=$BUILD RAYLAB_SANDBOX=none \
@@ -122,8 +123,8 @@ for name in "${names[@]}"; do
         case $id in
             crlf | settle | via-link | unconfined | link | fifo | big | '') continue ;;
             ipc)
-                [[ $(ipcs 2>/dev/null | grep -c '^0x' || true) == "$ipc_before" ]] ||
-                    { echo "FAIL $name: a SysV IPC object was left behind"; ipcs; failed=1; }
+                [[ $(ipcs -m 2>/dev/null | awk '$5 == 268435456' | wc -l) == "$ipc_before" ]] ||
+                    { echo "FAIL $name: a SysV shared-memory segment was left behind"; ipcs -m; failed=1; }
                 continue ;;
             note)
                 grep -qF -- "$want" "$summary" ||
