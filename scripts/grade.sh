@@ -385,12 +385,10 @@ link_cached() {
     declare -A own=([$id]=1)
     while [[ $mode == own ]] && ((grown)); do
         grown=0
-        for other in "${!own[@]}"; do
-            [[ $other == "$id" ]] && calls "$obj" || calls "${compiled[$other]}"
-        done | sort -u >"$obj.calls"
+        for other in "${!own[@]}"; do cat "${compiled[$other]}.calls"; done | sort -u >"$obj.all-calls"
         for other in "${MODULES[@]}"; do
             [[ -n ${own[$other]:-} || -z ${compiled[$other]:-} ]] && continue
-            if defines "${compiled[$other]}" | comm -12 - "$obj.calls" | grep -q .; then
+            if comm -12 "${compiled[$other]}.defines" "$obj.all-calls" | grep -q .; then
                 own[$other]=1 grown=1
             fi
         done
@@ -467,6 +465,8 @@ $(cat "$log.quoted")"
             continue
         fi
         compiled[$id]=$obj
+        calls "$obj" >"$obj.calls"
+        defines "$obj" >"$obj.defines"
     done
     for id in "${MODULES[@]}"; do
         [[ -n ${compiled[$id]:-} ]] || continue
