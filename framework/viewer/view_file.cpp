@@ -3,9 +3,9 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 
 #include "raylab/error.h"
+#include "raylab/image.h"
 #include "raylab/input_checks.h"
 #include "raylab/input_file.h"
 
@@ -143,9 +143,7 @@ void save_view_file(const std::string& path, const View& view,
                     const std::vector<PointLight>& lights,
                     const RenderSettings* settings) {
     check_output_path(path, OutputKind::text, "view file");
-    std::ofstream out(path);
-    out << format_view_file(view, lights, settings);
-    if (!out.flush()) throw Error(printable(path) + ": cannot write the view file");
+    write_file(path, format_view_file(view, lights, settings), "view file");
 }
 
 ViewFile load_view_file(const std::string& path) {

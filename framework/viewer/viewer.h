@@ -182,6 +182,7 @@ struct Viewer {
     int extra_frames = 2;           ///< frames to draw before sleeping (ImGui settles)
     bool screenshot_requested = false;  ///< F12: write the window at the end of a frame
     bool quit = false;
+    bool initial_scene_failed = false;  ///< the command line's OBJ did not load
 };
 
 }  // namespace raylab::viewer
