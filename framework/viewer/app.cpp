@@ -108,9 +108,12 @@ bool scripted_run_done(Viewer& v, int& exit_code) {
                 "screenshot %s: window %dx%d, image at %.0f,%.0f size %.0fx%.0f",
                 v.options.screenshot.c_str(), w, h, r.x, r.y, r.width, r.height);
             v.log.add(line);
-            std::snprintf(line, sizeof line,
-                          "panel: modules end at %.0f, window %.0f, scroll max %.0f",
-                          v.panel.modules_end, v.panel.window_height, v.panel.scroll_max);
+            std::snprintf(
+                line, sizeof line,
+                "panel: modules start at %.0f, end at %.0f, window %.0f, scroll "
+                "max %.0f",
+                v.panel.modules_top, v.panel.modules_end, v.panel.window_height,
+                v.panel.scroll_max);
             v.log.add(line);
             if (v.debug.open) {
                 std::snprintf(
@@ -146,6 +149,12 @@ void log_pinned_lights(Viewer& v) {
     const PixelReport& pin = v.inspector.pin;
     if (!v.inspector.pinned || !pin.probe) return;
     const auto add = [&](const PixelProbe& p, const char* who) {
+        char ray[256];
+        std::snprintf(ray, sizeof ray,
+                      "pinned (%d, %d) %s ray o (%.3f, %.3f, %.3f) w (%.4f, %.4f, %.4f)",
+                      pin.i, pin.j, who, p.ray.o.x, p.ray.o.y, p.ray.o.z, p.ray.w.x,
+                      p.ray.w.y, p.ray.w.z);
+        v.log.add(ray);
         for (const LightProbe& lp : p.lights) {
             char line[256];
             std::snprintf(line, sizeof line, "pinned (%d, %d) %s light %d: %s%s%s", pin.i,
