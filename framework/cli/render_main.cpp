@@ -51,9 +51,10 @@ void print_help() {
         "  --output FILE         write FILE.png (8-bit sRGB) or FILE.pfm (linear float)\n"
         "                        (default: raylab.png)\n"
         "  --repeat N            render N times and report the median time\n"
-        "A render of more than 1e10 rays prints its estimate first; on a terminal a\n"
-        "progress line shows the fraction done and the time left; Ctrl+C stops it.\n"
         "  --help                this text\n\n"
+        "A render of more than 1e10 rays prints its estimate first; on a terminal a\n"
+        "progress line shows the fraction done and the time left; Ctrl+C stops it\n"
+        "and writes nothing (exit code 130).\n\n"
         "Example: raylab-render --scene dtu --fov 40 --reference all --output dtu.png\n",
         raylab::options_help().c_str());
 }
