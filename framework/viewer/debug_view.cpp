@@ -214,10 +214,15 @@ void debug_view_window(Viewer& v) {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     const float scale = v.state.ui_scale;
     const ImVec2 size(std::min(480.0f * scale, 0.5f * (display.x - v.panel_width)),
-                      std::min(400.0f * scale, 0.6f * display.y));
+                      std::min(400.0f * scale, 0.55f * display.y));
     ImGui::SetNextWindowSize(size, ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowPos(ImVec2(display.x - 8.0f, display.y - 8.0f),
-                            ImGuiCond_FirstUseEver, ImVec2(1.0f, 1.0f));
+    // down to the image's bottom edge: the line below it keeps its notes (still stubs)
+    const float image_bottom = v.image_rect.y + v.image_rect.height;
+    const float bottom = v.image_rect.height > 0.0f
+                             ? std::min(display.y - 8.0f, image_bottom)
+                             : display.y - 8.0f;
+    ImGui::SetNextWindowPos(ImVec2(display.x - 8.0f, bottom), ImGuiCond_FirstUseEver,
+                            ImVec2(1.0f, 1.0f));
     if (!ImGui::Begin("3D debug view", &d.open)) {
         ImGui::End();
         return;

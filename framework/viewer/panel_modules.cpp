@@ -212,13 +212,16 @@ void probe_lines(const Viewer& v, const PixelReport& report) {
     ImGui::Text("radiance L (%.4f, %.4f, %.4f)", p.L.x, p.L.y, p.L.z);
     if (report.reference) {
         const PixelProbe& r = *report.reference;
+        // Wrapped: at UI scale 1.5 the line is wider than the panel
+        ImGui::PushStyleColor(ImGuiCol_Text, kGrey);
         if (r.hit) {
-            ImGui::TextColored(kGrey, "reference: hit t = %.5f, L (%.4f, %.4f, %.4f)",
-                               r.hit->t, r.L.x, r.L.y, r.L.z);
+            ImGui::TextWrapped("reference: hit t = %.5f, L (%.4f, %.4f, %.4f)", r.hit->t,
+                               r.L.x, r.L.y, r.L.z);
         } else {
-            ImGui::TextColored(kGrey, "reference: no hit, L (%.4f, %.4f, %.4f)", r.L.x,
-                               r.L.y, r.L.z);
+            ImGui::TextWrapped("reference: no hit, L (%.4f, %.4f, %.4f)", r.L.x, r.L.y,
+                               r.L.z);
         }
+        ImGui::PopStyleColor();
     }
 }
 
