@@ -3,9 +3,11 @@
 //   raylab-render --scene cornell --width 640 --height 480 --output cornell.png
 //
 // Prints the modules in use, the render time, rays per second and the frame's counters.
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -14,10 +16,32 @@
 #include <vector>
 
 #include "raylab/error.h"
+#include "raylab/input_checks.h"
+#include "raylab/input_file.h"
 #include "raylab/options.h"
 #include "raylab/renderer.h"
 
 namespace {
+
+// Above this many rays a render says what it will cost before it starts
+constexpr double kRayBudget = 1e10;
+
+// Ctrl+C: the render stops after the tiles in flight, nothing is written (a second
+// Ctrl+C ends the process at once, SA_RESETHAND)
+std::atomic<bool> interrupted{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "set from a signal handler");
+
+extern "C" void on_interrupt(int) {
+    interrupted.store(true);
+}
+
+void catch_interrupt() {
+    struct sigaction action {};
+    action.sa_handler = on_interrupt;
+    action.sa_flags = SA_RESETHAND;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, nullptr);
+}
 
 void print_help() {
     std::printf(
@@ -28,6 +52,9 @@ void print_help() {
         "                        (default: raylab.png)\n"
         "  --repeat N            render N times and report the median time\n"
         "  --help                this text\n\n"
+        "A render of more than 1e10 rays prints its estimate first; on a terminal a\n"
+        "progress line shows the fraction done and the time left; Ctrl+C stops it\n"
+        "and writes nothing (exit code 130).\n\n"
         "Example: raylab-render --scene dtu --fov 40 --reference all --output dtu.png\n",
         raylab::options_help().c_str());
 }
@@ -77,32 +104,64 @@ raylab::Scene load_with_progress(const raylab::Options& options) {
     ProgressLine line;
     const auto t0 = std::chrono::steady_clock::now();
     raylab::LoadProgress progress;
+    progress.cancel = &interrupted;
     progress.report = [&](const char* stage, float fraction) {
         line.show((std::string("loading: ") + stage).c_str(), fraction,
                   seconds_since(t0));
     };
     progress.warn = [&](const std::string& message) {
         line.clear();
-        std::fprintf(stderr, "raylab-render: warning: %s\n", message.c_str());
+        std::fprintf(stderr, "raylab-render: warning: %s\n",
+                     raylab::printable(message, 4000).c_str());
     };
     return make_scene(options, progress);
 }
 
-// Renders on a worker thread while this one shows the elapsed time on a terminal
+// The rays a render casts at most: every sample's camera ray and, in Lambert mode with
+// shadows, a shadow ray per light and light sample (the adaptive scheme's first pass adds
+// one camera ray a pixel)
+double ray_estimate(const raylab::Scene& scene, const raylab::Options& options) {
+    const raylab::RenderSettings& s = options.settings;
+    const double camera =
+        double(s.width) * s.height *
+        (s.spp + (s.sampling == raylab::PixelSampling::adaptive ? 1 : 0));
+    const bool shadows = s.shadows && s.mode == raylab::ShadingMode::lambert;
+    const double shadow_per_ray =
+        shadows
+            ? double(scene.lights.size()) * (s.light_size > 0.0f ? s.light_samples : 1)
+            : 0.0;
+    return camera * (1.0 + shadow_per_ray) * options.repeat;
+}
+
+// Renders on a worker thread while this one shows, on a terminal, the fraction done and
+// the time left at the pace so far
 raylab::FrameStats render_with_progress(const raylab::Scene& scene,
                                         const raylab::Options& options,
                                         const raylab::ModuleTable& modules,
                                         raylab::Image& image) {
     ProgressLine line;
     const auto t0 = std::chrono::steady_clock::now();
+    std::atomic<std::int64_t> done{0};
+    raylab::RenderSettings settings = options.settings;
+    settings.tiles_done = &done;
+    settings.cancel = &interrupted;
+    const double total = double(raylab::render_tile_total(settings));
     auto job = std::async(std::launch::async, [&] {
-        return raylab::render(scene, scene.view, options.settings, modules, image);
+        return raylab::render(scene, scene.view, settings, modules, image);
     });
     while (job.wait_for(std::chrono::milliseconds(200)) != std::future_status::ready) {
-        char text[96];
-        std::snprintf(text, sizeof text, "rendering %dx%d", options.settings.width,
-                      options.settings.height);
-        line.show(text, -1.0, seconds_since(t0));
+        const double fraction = double(done.load()) / total;
+        const double elapsed = seconds_since(t0);
+        char text[128];
+        if (fraction > 0.0) {
+            std::snprintf(text, sizeof text, "rendering %dx%d, %.0f s left",
+                          settings.width, settings.height,
+                          elapsed * (1.0 - fraction) / fraction);
+        } else {
+            std::snprintf(text, sizeof text, "rendering %dx%d", settings.width,
+                          settings.height);
+        }
+        line.show(text, fraction, elapsed);
     }
     return job.get();
 }
@@ -117,13 +176,17 @@ int main(int argc, char** argv) {
             print_help();
             return 0;
         }
-        if (options.output.empty()) options.output = "raylab.png";
-        check_image_extension(options.output);
+        if (options.output.empty()) {
+            options.output = "raylab.png";
+            check_output_path(options.output, OutputKind::image, "--output");
+        }
+        const std::string output = printable(options.output);
+        catch_interrupt();
         const Scene scene = load_with_progress(options);
         const ModuleTable modules = ModuleTable::make(options.modules);
         std::printf("scene %s: %zu triangles, %zu spheres, %zu planes, %zu lights\n",
-                    scene.name.c_str(), scene.triangles.size(), scene.spheres.size(),
-                    scene.planes.size(), scene.lights.size());
+                    printable(scene.name).c_str(), scene.triangles.size(),
+                    scene.spheres.size(), scene.planes.size(), scene.lights.size());
         std::printf("modules: %s\n", describe(options.modules).c_str());
         const std::string stubs = stub_modules_running(options.modules);
         if (!stubs.empty()) {
@@ -132,12 +195,29 @@ int main(int argc, char** argv) {
                 stubs.c_str());
         }
 
+        const double rays = ray_estimate(scene, options);
+        if (rays > kRayBudget) {
+            std::printf(
+                "note: this render casts up to %.2g rays (%dx%d pixels, %d samples, %zu "
+                "lights x %d light samples, %d times); Ctrl+C stops it\n",
+                rays, options.settings.width, options.settings.height,
+                options.settings.spp, scene.lights.size(),
+                options.settings.light_size > 0.0f ? options.settings.light_samples : 1,
+                options.repeat);
+        }
+        std::fflush(stdout);
+
         // Render, several times when asked, and keep the median time
         Image image;
         std::vector<double> times;
         FrameStats stats;
         for (int k = 0; k < options.repeat; ++k) {
             stats = render_with_progress(scene, options, modules, image);
+            if (stats.cancelled) {
+                std::fprintf(stderr,
+                             "raylab-render: interrupted (Ctrl+C): nothing written\n");
+                return 130;
+            }
             times.push_back(stats.milliseconds);
         }
         std::sort(times.begin(), times.end());
@@ -168,13 +248,18 @@ int main(int argc, char** argv) {
                 "returned an invalid value\n",
                 static_cast<unsigned long long>(stats.non_finite_pixels));
         }
-        std::printf("wrote %s\n", options.output.c_str());
+        std::printf("wrote %s\n", output.c_str());
         return 0;
+    } catch (const LoadCancelled&) {
+        std::fprintf(stderr, "raylab-render: interrupted (Ctrl+C) while loading\n");
+        return 130;
     } catch (const Error& e) {
-        std::fprintf(stderr, "raylab-render: error: %s\n", e.what());
+        std::fprintf(stderr, "raylab-render: error: %s\n",
+                     printable(e.what(), 4000).c_str());
         return 2;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "raylab-render: internal error: %s\n", e.what());
+        std::fprintf(stderr, "raylab-render: internal error: %s\n",
+                     printable(e.what(), 4000).c_str());
         return 3;
     }
 }

@@ -1,6 +1,11 @@
 // Images and their files (raylab/image.h).
 #include "raylab/image.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -10,6 +15,7 @@
 #include <stb_image_write.h>
 
 #include "raylab/error.h"
+#include "raylab/input_file.h"
 
 namespace raylab {
 
@@ -38,24 +44,59 @@ size_t count_non_finite(const Image& image) {
     return n;
 }
 
+void write_file(const std::string& path, std::string_view bytes,
+                const std::string& what) {
+    const std::string name = what + " '" + printable(path) + "'";
+    // O_NONBLOCK: a FIFO without a reader fails at once (ENXIO) instead of waiting
+    const int fd =
+        ::open(path.c_str(),
+               O_WRONLY | O_CREAT | O_TRUNC | O_NONBLOCK | O_CLOEXEC | O_NOCTTY, 0666);
+    if (fd < 0) throw Error("cannot write " + name + ": " + std::strerror(errno));
+    struct stat st {};
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        ::close(fd);
+        throw Error("cannot write " + name + ": not a regular file");
+    }
+    size_t done = 0;
+    while (done < bytes.size()) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            const int error = n < 0 ? errno : EIO;
+            ::close(fd);
+            throw Error("cannot write " + name + ": " + std::strerror(error));
+        }
+        done += static_cast<size_t>(n);
+    }
+    if (::close(fd) != 0)
+        throw Error("cannot write " + name + ": " + std::strerror(errno));
+}
+
+std::string encode_png(int width, int height, const std::uint8_t* rgb) {
+    std::string bytes;
+    const auto append = [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data),
+                                                   static_cast<size_t>(size));
+    };
+    if (!stbi_write_png_to_func(append, &bytes, width, height, 3, rgb, width * 3))
+        throw Error("cannot encode a " + std::to_string(width) + "x" +
+                    std::to_string(height) + " PNG");
+    return bytes;
+}
+
 void write_png(const std::string& path, const Image& image, float exposure) {
     const std::vector<std::uint8_t> bytes = to_srgb8(image, exposure);
-    if (!stbi_write_png(path.c_str(), image.width, image.height, 3, bytes.data(),
-                        image.width * 3)) {
-        throw Error("cannot write PNG '" + path + "'");
-    }
+    write_file(path, encode_png(image.width, image.height, bytes.data()), "PNG");
 }
 
 void write_pfm(const std::string& path, const Image& image) {
-    std::ofstream out(path, std::ios::binary);
-    if (!out) throw Error("cannot write PFM '" + path + "'");
     // A negative scale marks little-endian data; rows go bottom to top
-    out << "PF\n" << image.width << " " << image.height << "\n-1.0\n";
-    for (int j = image.height - 1; j >= 0; --j) {
-        out.write(reinterpret_cast<const char*>(&image.at(0, j)),
-                  static_cast<std::streamsize>(sizeof(Vec3)) * image.width);
-    }
-    if (!out) throw Error("cannot write PFM '" + path + "'");
+    std::string bytes = "PF\n" + std::to_string(image.width) + " " +
+                        std::to_string(image.height) + "\n-1.0\n";
+    const size_t row = sizeof(Vec3) * static_cast<size_t>(image.width);
+    for (int j = image.height - 1; j >= 0; --j)
+        bytes.append(reinterpret_cast<const char*>(&image.at(0, j)), row);
+    write_file(path, bytes, "PFM");
 }
 
 Image read_pfm(const std::string& path) {
@@ -97,7 +138,8 @@ bool is_pfm(const std::string& path) {
 
 void check_image_extension(const std::string& path) {
     if (!is_png(path) && !is_pfm(path))
-        throw Error("output '" + path + "': unknown image type (use .png or .pfm)");
+        throw Error("output '" + printable(path) +
+                    "': unknown image type (use .png or .pfm)");
 }
 
 void write_image(const std::string& path, const Image& image, float exposure) {

@@ -4,7 +4,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 
 #include "raylab/error.h"
@@ -140,7 +142,14 @@ void check_output_path(const std::string& path, OutputKind kind,
     if (kind == OutputKind::png && ext != ".png")
         throw Error(what + ": '" + name + "': screenshots are PNG (use .png)");
     struct stat st {};
+    errno = 0;
     const bool exists = ::stat(path.c_str(), &st) == 0;
+    // A name too long, a loop of links, ... (a missing folder or a file taken for one is
+    // named by the folder check below)
+    if (!exists && errno != ENOENT && errno != ENOTDIR)
+        throw Error(what + ": '" + name + "': " + std::strerror(errno));
+    if (!exists && ::lstat(path.c_str(), &st) == 0)
+        throw Error(what + ": '" + name + "' is a symbolic link to nothing");
     if (kind == OutputKind::folder) {
         if (exists) {
             check_writable_folder(path, what);
@@ -148,6 +157,14 @@ void check_output_path(const std::string& path, OutputKind kind,
         }
     } else if (exists && S_ISDIR(st.st_mode)) {
         throw Error(what + ": '" + name + "' is a folder");
+    } else if (exists && !S_ISREG(st.st_mode)) {
+        // Writing would wait on a FIFO forever or fill a device
+        throw Error(what + ": '" + name + "' is " +
+                    (S_ISFIFO(st.st_mode)                         ? "a FIFO"
+                     : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device"
+                     : S_ISSOCK(st.st_mode)                       ? "a socket"
+                                            : "not a regular file") +
+                    ", not a regular file");
     } else if (exists && ::access(path.c_str(), W_OK) != 0) {
         throw Error(what + ": '" + name + "' is not writable");
     }

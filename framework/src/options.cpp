@@ -1,7 +1,11 @@
 // Command-line flags (raylab/options.h).
 #include "raylab/options.h"
 
+#include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <sstream>
+#include <tuple>
 
 #include "raylab/error.h"
 #include "raylab/input_checks.h"
@@ -12,18 +16,74 @@ namespace raylab {
 
 namespace {
 
-float parse_float(const std::string& flag, const std::string& text) {
-    float x = 0.0f;
-    if (!parse_real(text, x))
+// Digits with at most one point among them, at least one digit; returns the end
+size_t scan_digits(const std::string& t, size_t k, size_t& digits, bool point) {
+    for (; k < t.size(); ++k) {
+        if (t[k] >= '0' && t[k] <= '9') {
+            ++digits;
+        } else if (point && t[k] == '.') {
+            point = false;
+        } else {
+            break;
+        }
+    }
+    return k;
+}
+
+}  // namespace
+
+float parse_flag_number(const std::string& flag, const std::string& text) {
+    // The decimal form only: strtod alone would take blanks, hex, "inf" and "nan"
+    size_t k = !text.empty() && (text[0] == '+' || text[0] == '-') ? 1 : 0;
+    size_t digits = 0, exponent_digits = 0;
+    k = scan_digits(text, k, digits, true);
+    if (digits > 0 && k < text.size() && (text[k] == 'e' || text[k] == 'E')) {
+        ++k;
+        if (k < text.size() && (text[k] == '+' || text[k] == '-')) ++k;
+        k = scan_digits(text, k, exponent_digits, false);
+        if (exponent_digits == 0) digits = 0;
+    }
+    if (digits == 0 || k != text.size())
         throw Error(flag + ": '" + printable(text) + "' is not a finite number");
+    // glibc's strtod reads a decimal of any length exactly; it is the float's range
+    // that limits the value
+    const double x = std::strtod(text.c_str(), nullptr);
+    if (!(std::fabs(x) <= double(std::numeric_limits<float>::max())))
+        throw Error(flag + ": '" + printable(text) +
+                    "' is not a finite number (beyond +-3.4e38, a float's range)");
+    return static_cast<float>(x);
+}
+
+long long parse_flag_whole(const std::string& flag, const std::string& text, long long lo,
+                           long long hi) {
+    const std::string range = " in " + std::to_string(lo) + ".." + std::to_string(hi);
+    size_t k = !text.empty() && (text[0] == '+' || text[0] == '-') ? 1 : 0;
+    const bool negative = k == 1 && text[0] == '-';
+    size_t digits = 0;
+    const std::string refused =
+        flag + ": '" + printable(text) + "' is not a whole number" + range;
+    if (scan_digits(text, k, digits, false) != text.size() || digits == 0)
+        throw Error(refused);
+    while (k + 1 < text.size() && text[k] == '0')  // leading zeros of any number
+        ++k;
+    // At most 18 digits fit a long long; more are beyond every range here
+    long long x = 0;
+    const bool fits = text.size() - k <= 18;
+    for (; fits && k < text.size(); ++k)
+        x = 10 * x + (text[k] - '0');
+    if (negative) x = -x;
+    if (!fits || x < lo || x > hi) throw Error(refused);
     return x;
 }
 
+namespace {
+
+float parse_float(const std::string& flag, const std::string& text) {
+    return parse_flag_number(flag, text);
+}
+
 int parse_int(const std::string& flag, const std::string& text) {
-    long long x = 0;
-    if (!parse_whole(text, -1000000000LL, 1000000000LL, x))
-        throw Error(flag + ": '" + printable(text) + "' is not a whole number");
-    return static_cast<int>(x);
+    return static_cast<int>(parse_flag_whole(flag, text, -1000000000LL, 1000000000LL));
 }
 
 Vec3 parse_vec3(const std::string& flag, const std::string& text) {
@@ -38,6 +98,17 @@ Vec3 parse_vec3(const std::string& flag, const std::string& text) {
     const float y = parse_float(flag, parts[1]);
     const float z = parse_float(flag, parts[2]);
     return Vec3(x, y, z);
+}
+
+// A word parse() knows (a shading mode, a sampling scheme); its error names the flag
+// and shows the word escaped
+template <typename Parse>
+auto parse_word(const std::string& flag, const std::string& word, Parse parse) {
+    try {
+        return parse(word);
+    } catch (const Error& e) {
+        throw Error(flag + ": " + printable(e.what(), 400));
+    }
 }
 
 bool parse_on_off(const std::string& flag, const std::string& text) {
@@ -87,7 +158,7 @@ antialiasing area-light, IDs such as 04_sphere, numbers 1-10, or all):
 
 Options parse_options(int argc, const char* const* argv, bool allow_extra) {
     Options o;
-    std::vector<std::pair<std::string, Impl>> module_lists;
+    std::vector<std::tuple<std::string, std::string, Impl>> module_lists;
     for (int k = 1; k < argc; ++k) {
         const std::string flag = argv[k];
         const auto value = [&]() -> std::string {
@@ -126,7 +197,7 @@ Options parse_options(int argc, const char* const* argv, bool allow_extra) {
         } else if (flag == "--height") {
             o.settings.height = parse_int(flag, value());
         } else if (flag == "--mode") {
-            o.settings.mode = parse_shading_mode(value());
+            o.settings.mode = parse_word(flag, value(), parse_shading_mode);
         } else if (flag == "--shadows") {
             o.settings.shadows = parse_on_off(flag, value());
         } else if (flag == "--exposure") {
@@ -138,7 +209,7 @@ Options parse_options(int argc, const char* const* argv, bool allow_extra) {
             o.settings.spp = parse_int(flag, value());
             check_samples_per_pixel(o.settings.spp, flag);
         } else if (flag == "--aa") {
-            o.settings.sampling = parse_pixel_sampling(value());
+            o.settings.sampling = parse_word(flag, value(), parse_pixel_sampling);
         } else if (flag == "--aa-threshold") {
             o.settings.aa_threshold = parse_float(flag, value());
             check_aa_threshold(o.settings.aa_threshold, flag);
@@ -160,12 +231,10 @@ Options parse_options(int argc, const char* const* argv, bool allow_extra) {
             o.output = value();
             check_output_path(o.output, OutputKind::image, flag);
         } else if (flag == "--repeat") {
-            o.repeat = parse_int(flag, value());
-            if (o.repeat < 1 || o.repeat > 1000)
-                throw Error("--repeat: must be in 1..1000");
+            o.repeat = static_cast<int>(parse_flag_whole(flag, value(), 1, 1000));
         } else if (flag == "--student" || flag == "--reference") {
             module_lists.emplace_back(
-                value(), flag == "--student" ? Impl::student : Impl::reference);
+                flag, value(), flag == "--student" ? Impl::student : Impl::reference);
         } else if (allow_extra && flag.rfind("--", 0) == 0) {
             o.extra.push_back(flag);
             // A following word that is not a flag is this flag's value
@@ -181,8 +250,13 @@ Options parse_options(int argc, const char* const* argv, bool allow_extra) {
     // the student's sphere and leaves the other modules as they were; "--student all
     // --reference camera" runs everything but the camera from exercises/
     o.modules = auto_selection();
-    for (const auto& [list, impl] : module_lists)
-        apply_module_list(o.modules, list, impl);
+    for (const auto& [flag, list, impl] : module_lists) {
+        try {
+            apply_module_list(o.modules, list, impl);
+        } catch (const Error& e) {
+            throw Error(flag + ": " + printable(e.what(), 400));
+        }
+    }
     o.modules_given = !module_lists.empty();
     return o;
 }

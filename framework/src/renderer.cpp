@@ -52,6 +52,14 @@ void validate(const RenderSettings& s) {
     check_light_samples(s.light_samples, "light samples");
 }
 
+std::int64_t render_tile_total(const RenderSettings& s) {
+    const std::int64_t tiles = std::int64_t{(s.width + kTileSize - 1) / kTileSize} *
+                               ((s.height + kTileSize - 1) / kTileSize);
+    const bool two_passes =
+        detail::supersampled(s) && s.sampling == PixelSampling::adaptive;
+    return two_passes ? 2 * tiles : tiles;
+}
+
 PinholeCamera make_camera(const ModuleTable& modules, const View& view) {
     validate(view);
     PinholeCamera camera;
@@ -432,6 +440,7 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
                     // before must not change its work counts
                     shader.forget_blocker();
                     pass(tile, radiance, shader);
+                    if (settings.tiles_done) ++*settings.tiles_done;
                 }
             } catch (...) {
                 errors[k] = std::current_exception();

@@ -50,7 +50,8 @@ std::vector<int> coarse_levels(const FrameState& f, const RenderJob& job) {
     return levels;
 }
 
-void report_error(Viewer& v, const std::string& message) {
+void report_error(Viewer& v, const std::string& raw) {
+    const std::string message = printable(raw, 4 * raw.size() + 1);
     v.panel.error = message;
     v.log.add("error: " + message);
     std::fprintf(stderr, "raylab: error: %s\n", message.c_str());

@@ -108,9 +108,12 @@ bool scripted_run_done(Viewer& v, int& exit_code) {
                 "screenshot %s: window %dx%d, image at %.0f,%.0f size %.0fx%.0f",
                 v.options.screenshot.c_str(), w, h, r.x, r.y, r.width, r.height);
             v.log.add(line);
-            std::snprintf(line, sizeof line,
-                          "panel: modules end at %.0f, window %.0f, scroll max %.0f",
-                          v.panel.modules_end, v.panel.window_height, v.panel.scroll_max);
+            std::snprintf(
+                line, sizeof line,
+                "panel: modules start at %.0f, end at %.0f, window %.0f, scroll "
+                "max %.0f",
+                v.panel.modules_top, v.panel.modules_end, v.panel.window_height,
+                v.panel.scroll_max);
             v.log.add(line);
             if (v.debug.open) {
                 std::snprintf(
@@ -121,7 +124,7 @@ bool scripted_run_done(Viewer& v, int& exit_code) {
             }
         } catch (const std::exception& e) {
             report_error(v, e.what());
-            exit_code = 1;
+            exit_code = 2;
         }
     }
     return true;
@@ -146,6 +149,12 @@ void log_pinned_lights(Viewer& v) {
     const PixelReport& pin = v.inspector.pin;
     if (!v.inspector.pinned || !pin.probe) return;
     const auto add = [&](const PixelProbe& p, const char* who) {
+        char ray[256];
+        std::snprintf(ray, sizeof ray,
+                      "pinned (%d, %d) %s ray o (%.3f, %.3f, %.3f) w (%.4f, %.4f, %.4f)",
+                      pin.i, pin.j, who, p.ray.o.x, p.ray.o.y, p.ray.o.z, p.ray.w.x,
+                      p.ray.w.y, p.ray.w.z);
+        v.log.add(ray);
         for (const LightProbe& lp : p.lights) {
             char line[256];
             std::snprintf(line, sizeof line, "pinned (%d, %d) %s light %d: %s%s%s", pin.i,
@@ -170,12 +179,16 @@ void log_pinned_lights(Viewer& v) {
     if (pin.reference) add(*pin.reference, "reference");
 }
 
-// What the command line asked for at exit
-int exit_actions(Viewer& v) {
+// What the command line asked for at exit; a failed write is exit code 2, as in
+// raylab-render. Nothing is saved when the command line's scene did not load (its error
+// is the one message)
+int exit_actions(Viewer& v, bool save) {
     int code = 0;
-    if (!v.options.save_image.empty() && !save_image(v, v.options.save_image)) code = 1;
-    if (!v.options.save_view.empty() && !save_view(v, v.options.save_view)) code = 1;
-    if (!v.options.report.empty() && !save_report(v, v.options.report)) code = 1;
+    if (save && !v.options.save_image.empty() && !save_image(v, v.options.save_image))
+        code = 2;
+    if (save && !v.options.save_view.empty() && !save_view(v, v.options.save_view))
+        code = 2;
+    if (save && !v.options.report.empty() && !save_report(v, v.options.report)) code = 2;
     v.log.add("final view: " + view_line(v.state.view));
     log_pinned_lights(v);
     return code;
@@ -337,7 +350,7 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
         glfwSwapBuffers(v->window);
         frame_shown(*v);
     }
-    const int exit_status = exit_actions(*v);
+    const int exit_status = exit_actions(*v, !v->initial_scene_failed);
     const int code = exit_code != 0 ? exit_code : exit_status;
     // A load still running (tinyobjloader's parse and the BVH build cannot stop midway):
     // ask it to stop, and do not wait long for it, so Ctrl+Q always exits

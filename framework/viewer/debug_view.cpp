@@ -209,13 +209,30 @@ void draw(Viewer& v, int w, int h) {
 void debug_view_window(Viewer& v) {
     DebugView& d = v.debug;
     if (!d.open) return;
-    ImGui::SetNextWindowSize(ImVec2(480, 400), ImGuiCond_FirstUseEver);
+    // Opens at the bottom right, over the image, where it hides none of the panel's
+    // controls; scaled with the UI
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    const float scale = v.state.ui_scale;
+    const ImVec2 size(std::min(480.0f * scale, 0.5f * (display.x - v.panel_width)),
+                      std::min(400.0f * scale, 0.55f * display.y));
+    ImGui::SetNextWindowSize(size, ImGuiCond_FirstUseEver);
+    // down to the image's bottom edge: the line below it keeps its notes (still stubs)
+    const float image_bottom = v.image_rect.y + v.image_rect.height;
+    const float bottom = v.image_rect.height > 0.0f
+                             ? std::min(display.y - 8.0f, image_bottom)
+                             : display.y - 8.0f;
+    ImGui::SetNextWindowPos(ImVec2(display.x - 8.0f, bottom), ImGuiCond_FirstUseEver,
+                            ImVec2(1.0f, 1.0f));
     if (!ImGui::Begin("3D debug view", &d.open)) {
         ImGui::End();
         return;
     }
-    ImGui::TextDisabled("drag: orbit, wheel: zoom; white camera ray, cyan normal,");
-    ImGui::TextDisabled("green free / red blocked shadow rays, yellow lights");
+    // Wrapped: at a large UI scale the window is narrower than the lines
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+    ImGui::TextWrapped(
+        "drag: orbit, wheel: zoom; white camera ray, cyan normal, green free / red "
+        "blocked shadow rays, yellow lights");
+    ImGui::PopStyleColor();
     const ImVec2 avail = ImGui::GetContentRegionAvail();
     const int w = std::max(16, int(avail.x)), h = std::max(16, int(avail.y));
     draw(v, w, h);

@@ -2,11 +2,11 @@
 #include "gl_image.h"
 
 #include <GL/gl.h>
-#include <stb_image_write.h>  // Debian's libstb holds the implementation
 
 #include <algorithm>
 
 #include "raylab/error.h"
+#include "raylab/image.h"
 
 namespace raylab::viewer {
 
@@ -46,9 +46,7 @@ void write_screenshot(const std::string& path, int width, int height) {
     for (int y = 0; y < height; ++y) {
         std::copy_n(&pixels[(height - 1 - y) * row], row, &flipped[y * row]);
     }
-    if (!stbi_write_png(path.c_str(), width, height, 3, flipped.data(),
-                        static_cast<int>(row)))
-        throw Error(path + ": cannot write the screenshot");
+    write_file(path, encode_png(width, height, flipped.data()), "screenshot");
 }
 
 }  // namespace raylab::viewer

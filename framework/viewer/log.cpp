@@ -1,12 +1,36 @@
 // The message log (viewer/log.h).
 #include "log.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <ctime>
+#include <string_view>
+
+#include "raylab/input_file.h"
 
 namespace raylab::viewer {
 
-void Log::add(const std::string& line) {
+namespace {
+
+// Control bytes of a file name or a flag (ESC, BEL) never reach the terminal or the
+// panel; line breaks stay
+std::string safe_text(const std::string& text) {
+    std::string out;
+    size_t start = 0;
+    while (start <= text.size()) {
+        const size_t end = std::min(text.find('\n', start), text.size());
+        if (start > 0) out += '\n';
+        out += printable(std::string_view(text).substr(start, end - start),
+                         4 * text.size() + 1);
+        start = end + 1;
+    }
+    return out;
+}
+
+}  // namespace
+
+void Log::add(const std::string& raw) {
+    const std::string line = safe_text(raw);
     const std::time_t now = std::time(nullptr);
     std::tm local{};
     localtime_r(&now, &local);

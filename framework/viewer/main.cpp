@@ -10,6 +10,7 @@
 
 #include "app.h"
 #include "raylab/error.h"
+#include "raylab/input_file.h"
 #include "raylab/options.h"
 #include "viewer_options.h"
 
@@ -38,14 +39,15 @@ int main(int argc, char** argv) {
         }
         if (!options.output.empty())
             throw Error("--output is raylab-render's; the viewer has --save-image FILE");
-        const viewer::ViewerOptions viewer_options =
-            viewer::parse_viewer_options(options.extra);
+        const viewer::ViewerOptions viewer_options = viewer::parse_viewer_options(
+            options.extra, options.settings.width, options.settings.height);
         return viewer::run_viewer(options, viewer_options);
     } catch (const Error& e) {
-        std::fprintf(stderr, "raylab: error: %s\n", e.what());
+        std::fprintf(stderr, "raylab: error: %s\n", printable(e.what(), 4000).c_str());
         return 2;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "raylab: internal error: %s\n", e.what());
+        std::fprintf(stderr, "raylab: internal error: %s\n",
+                     printable(e.what(), 4000).c_str());
         return 3;
     }
 }

@@ -4,6 +4,10 @@
 
 #include <imgui.h>
 
+#include <cstdio>
+
+#include "raylab/modules.h"
+
 namespace raylab::viewer {
 
 namespace {
@@ -17,7 +21,35 @@ void error_banner(Viewer& v) {
     ImGui::Separator();
 }
 
+// Where to start, while a module is still a stub: the first one not started, its file
+// and handout, and the two buttons that show progress
+void first_run_hint(Viewer& v) {
+    if (v.state.stubs == 0 || v.panel.hint_dismissed) return;
+    for (const ModuleInfo& info : module_infos()) {
+        if (!(v.state.stubs & (1u << static_cast<int>(info.module)))) continue;
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.85f, 0.4f, 1.0f));
+        ImGui::TextWrapped(
+            "Start here: module %s. Write exercises/%s.cpp (see "
+            "docs/handouts/%s.md), rebuild, then press Run tests below.",
+            info.id, info.id, info.id);
+        ImGui::PopStyleColor();
+        if (ImGui::SmallButton("Got it")) v.panel.hint_dismissed = true;
+        ImGui::Separator();
+        return;
+    }
+}
+
 }  // namespace
+
+void note_widget(Viewer& v, const char* name) {
+    // From the third frame: the panel's scroll bar, known after the first, narrows items
+    if (ImGui::GetFrameCount() < 3 || !v.panel.widgets_logged.insert(name).second) return;
+    const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+    char line[128];
+    std::snprintf(line, sizeof line, "panel: widget %s at %.0f,%.0f size %.0fx%.0f", name,
+                  a.x, a.y, b.x - a.x, b.y - a.y);
+    v.log.add(line);
+}
 
 void draw_panel(Viewer& v) {
     const ImGuiIO& io = ImGui::GetIO();
@@ -29,20 +61,23 @@ void draw_panel(Viewer& v) {
     ImGui::Begin("raylab", nullptr, flags);
     ImGui::PushItemWidth(-150.0f * v.state.ui_scale);  // room for the labels
     error_banner(v);
+    first_run_hint(v);
+    // Modules first: the student's main control, visible without scrolling at 1280x800
+    // and UI scale 1.5 (the screenshot test logs where it starts and ends)
+    v.panel.modules_top = ImGui::GetCursorPosY();
+    if (ImGui::CollapsingHeader("Modules", ImGuiTreeNodeFlags_DefaultOpen))
+        modules_section(v);
+    v.panel.modules_end = ImGui::GetCursorPosY();
+    v.panel.scroll_max = ImGui::GetScrollMaxY();
+    v.panel.window_height = ImGui::GetWindowHeight();
     if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen))
         scene_section(v);
     if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen))
         camera_section(v);
-    if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen))
-        lights_section(v);
+    // Closed at start: the keys move the selected light (its line says which)
+    if (ImGui::CollapsingHeader("Lights")) lights_section(v);
     if (ImGui::CollapsingHeader("Rendering", ImGuiTreeNodeFlags_DefaultOpen))
         rendering_section(v);
-    if (ImGui::CollapsingHeader("Modules", ImGuiTreeNodeFlags_DefaultOpen))
-        modules_section(v);
-    // Where the module rows end, for the scripted check that they stay reachable
-    v.panel.modules_end = ImGui::GetCursorPosY();
-    v.panel.scroll_max = ImGui::GetScrollMaxY();
-    v.panel.window_height = ImGui::GetWindowHeight();
     if (ImGui::CollapsingHeader("Frame statistics")) stats_section(v);
     // Open at start when the command line asked for them
     if (v.state.compare) ImGui::SetNextItemOpen(true, ImGuiCond_Once);

@@ -8,6 +8,10 @@ namespace raylab::viewer {
 /// The whole panel, left of the image (panel.cpp).
 void draw_panel(Viewer& v);
 
+/// Logs where the last item is, once per name ("panel: widget NAME at X,Y size WxH",
+/// window pixels): the GUI tests click there, whatever the panel's layout.
+void note_widget(Viewer& v, const char* name);
+
 // panel_scene.cpp
 void scene_section(Viewer& v);
 void camera_section(Viewer& v);

@@ -186,6 +186,18 @@ void probe_lines(const Viewer& v, const PixelReport& report) {
     ImGui::Text("pixel (%d, %d)  uv (%.4f, %.4f)", report.i, report.j, p.uv.x, p.uv.y);
     ImGui::Text("ray o (%.3f, %.3f, %.3f)", p.ray.o.x, p.ray.o.y, p.ray.o.z);
     ImGui::Text("    w (%.4f, %.4f, %.4f)", p.ray.w.x, p.ray.w.y, p.ray.w.z);
+    if (report.reference) {
+        // The reference's camera ray for the same pixel, red where it differs
+        const Ray& r = report.reference->ray;
+        const auto near = [](const Vec3& a, const Vec3& b) {
+            return glm::all(glm::lessThanEqual(glm::abs(a - b), Vec3(1e-4f)));
+        };
+        const bool same = near(r.o, p.ray.o) && near(r.w, p.ray.w);
+        const ImVec4 colour = same ? kGrey : kRed;
+        ImGui::TextColored(colour, "ref o (%.3f, %.3f, %.3f)", r.o.x, r.o.y, r.o.z);
+        ImGui::TextColored(colour, "    w (%.4f, %.4f, %.4f)%s", r.w.x, r.w.y, r.w.z,
+                           same ? "" : "  differs");
+    }
     if (p.hit) {
         const Hit& h = *p.hit;
         const std::string& material = v.state.scene.materials[h.material].name;
@@ -200,13 +212,16 @@ void probe_lines(const Viewer& v, const PixelReport& report) {
     ImGui::Text("radiance L (%.4f, %.4f, %.4f)", p.L.x, p.L.y, p.L.z);
     if (report.reference) {
         const PixelProbe& r = *report.reference;
+        // Wrapped: at UI scale 1.5 the line is wider than the panel
+        ImGui::PushStyleColor(ImGuiCol_Text, kGrey);
         if (r.hit) {
-            ImGui::TextColored(kGrey, "reference: hit t = %.5f, L (%.4f, %.4f, %.4f)",
-                               r.hit->t, r.L.x, r.L.y, r.L.z);
+            ImGui::TextWrapped("reference: hit t = %.5f, L (%.4f, %.4f, %.4f)", r.hit->t,
+                               r.L.x, r.L.y, r.L.z);
         } else {
-            ImGui::TextColored(kGrey, "reference: no hit, L (%.4f, %.4f, %.4f)", r.L.x,
-                               r.L.y, r.L.z);
+            ImGui::TextWrapped("reference: no hit, L (%.4f, %.4f, %.4f)", r.L.x, r.L.y,
+                               r.L.z);
         }
+        ImGui::PopStyleColor();
     }
 }
 

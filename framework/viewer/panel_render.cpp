@@ -164,6 +164,7 @@ void rendering_section(Viewer& v) {
         s.dirty = true;
     }
     if (ImGui::Checkbox("shadows", &s.settings.shadows)) s.dirty = true;
+    note_widget(v, "shadows");
     ImGui::SameLine();
     const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
     ImGui::SetNextItemWidth(120.0f);
@@ -175,6 +176,7 @@ void rendering_section(Viewer& v) {
         s.retone = true;  // tone mapping only: no new render
         ++v.frames.retones;
     }
+    note_widget(v, "exposure");
     ImGui::SameLine(0.0f, ImGui::GetStyle().ItemInnerSpacing.x);
     ImGui::Text("exposure %+.1f EV", double(s.exposure));
     sampling(v);
@@ -200,7 +202,19 @@ void frame_overlay(Viewer& v) {
     const FrameState& f = v.frames;
     const ImGuiIO& io = ImGui::GetIO();
     const float line = ImGui::GetTextLineHeightWithSpacing();
-    v.overlay_height = 2.0f * line + 2.0f * ImGui::GetStyle().WindowPadding.y;
+    // The plot beside the two lines of text where it has room for its title, else below
+    // them (UI scale 1.5 at 1280x800)
+    const float text_width =
+        ImGui::CalcTextSize(
+            "9999.99 ms  full 9999x9999, on screen 9999.9 ms after the "
+            "change")
+            .x;
+    const bool stacked = io.DisplaySize.x - v.panel_width <
+                         text_width +
+                             ImGui::CalcTextSize("render time [ms], max 9999.9").x +
+                             4.0f * ImGui::GetStyle().WindowPadding.x;
+    v.overlay_height =
+        (stacked ? 4.0f : 2.0f) * line + 2.0f * ImGui::GetStyle().WindowPadding.y;
     ImGui::SetNextWindowPos(ImVec2(v.panel_width, 0.0f), ImGuiCond_Always);
     ImGui::SetNextWindowSize(ImVec2(io.DisplaySize.x - v.panel_width, v.overlay_height),
                              ImGuiCond_Always);
@@ -244,13 +258,19 @@ void frame_overlay(Viewer& v) {
                         : "");
     }
     ImGui::EndGroup();
-    ImGui::SameLine();
+    if (!stacked) ImGui::SameLine();
     const float top = *std::max_element(f.history_ms.begin(), f.history_ms.end());
+    // The plot's title in full, or shorter where the window is narrow: never clipped
+    const float width = ImGui::GetContentRegionAvail().x;
     char overlay[64];
     std::snprintf(overlay, sizeof overlay, "render time [ms], max %.1f", top);
+    if (ImGui::CalcTextSize(overlay).x + ImGui::GetStyle().FramePadding.x * 2 > width)
+        std::snprintf(overlay, sizeof overlay, "max %.0f ms", top);
+    if (ImGui::CalcTextSize(overlay).x + ImGui::GetStyle().FramePadding.x * 2 > width)
+        overlay[0] = '\0';
     ImGui::PlotLines("##history", f.history_ms.data(), int(f.history_ms.size()), 0,
                      overlay, 0.0f, top * 1.1f,
-                     ImVec2(ImGui::GetContentRegionAvail().x, 2.0f * line));
+                     ImVec2(width, (stacked ? 1.8f : 2.0f) * line));
     ImGui::End();
 }
 

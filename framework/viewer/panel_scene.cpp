@@ -43,6 +43,7 @@ void scene_section(Viewer& v) {
     const bool enter =
         ImGui::InputTextWithHint("##obj", "path/to/model.obj", &v.panel.obj_path,
                                  ImGuiInputTextFlags_EnterReturnsTrue);
+    note_widget(v, "obj-path");
     ImGui::SameLine();
     if ((ImGui::Button("Open OBJ") || enter) && !v.panel.obj_path.empty())
         start_loading_scene(v, v.panel.obj_path);

@@ -20,8 +20,9 @@ bool same_lights(const std::vector<PointLight>& a, const std::vector<PointLight>
 
 // A field added to these must be compared below, or a kept frame would answer for a job
 // that differs in it (sizes with 64-bit pointers). Not compared, because they are not
-// inputs of the image: cancel, samples_map (heat map: show_samples), camera_hits
-static_assert(sizeof(void*) != 8 || (sizeof(RenderSettings) == 88 && sizeof(View) == 40 &&
+// inputs of the image: cancel, tiles_done, samples_map (heat map: show_samples),
+// camera_hits
+static_assert(sizeof(void*) != 8 || (sizeof(RenderSettings) == 96 && sizeof(View) == 40 &&
                                      sizeof(PointLight) == 24),
               "a new field in RenderSettings, View or PointLight: compare it in "
               "same_frame (viewer/render_worker.cpp; View: its operator== in "

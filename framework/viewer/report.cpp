@@ -4,9 +4,10 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
-#include <fstream>
 
 #include "raylab/error.h"
+#include "raylab/image.h"
+#include "raylab/input_file.h"
 #include "view_file.h"
 
 namespace raylab::viewer {
@@ -46,9 +47,7 @@ std::string module_flags(const ModuleSelection& modules) {
 }
 
 void write_text(const std::string& path, const std::string& text) {
-    std::ofstream out(path);
-    out << text;
-    if (!out.flush()) throw Error(path + ": cannot write the report file");
+    write_file(path, text, "report file");
 }
 
 std::string frame_text(const FrameStats& s) {
@@ -119,7 +118,9 @@ std::string default_report_dir() {
 void write_report(const std::string& dir, const ReportInput& in) {
     std::error_code error;
     std::filesystem::create_directories(dir, error);
-    if (error) throw Error(dir + ": cannot create the report folder: " + error.message());
+    if (error)
+        throw Error(printable(dir) +
+                    ": cannot create the report folder: " + error.message());
     save_view_file(dir + "/view.txt", in.view, in.lights, &in.settings);
 
     std::string settings = "# raylab viewer report\n";

@@ -169,10 +169,14 @@ bool finish_loading(Viewer& v) {
         v.log.add("loading " + v.loading_source + " cancelled");
         return true;
     } catch (const std::exception& e) {
-        report_error(
-            v, std::string(e.what()) + " (still showing " + v.state.scene_source + ")");
-        // The command line's scene failed: a scripted run ends with exit code 2
-        return !(status && status->initial && v.options.frames > 0);
+        // The command line's scene failed: the window shows an empty scene (one message)
+        // and a scripted run ends with exit code 2
+        const bool initial = status && status->initial;
+        v.initial_scene_failed = v.initial_scene_failed || initial;
+        report_error(v, initial ? std::string(e.what())
+                                : std::string(e.what()) + " (still showing " +
+                                      printable(v.state.scene_source) + ")");
+        return !(initial && v.options.frames > 0);
     }
 }
 

@@ -3,11 +3,12 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 
 #include "raylab/error.h"
+#include "raylab/image.h"
 #include "raylab/input_checks.h"
 #include "raylab/input_file.h"
+#include "raylab/options.h"
 
 namespace raylab::viewer {
 
@@ -40,11 +41,9 @@ std::vector<float> numbers(const std::vector<std::string_view>& words,
                     std::to_string(words.size() - 1));
     }
     std::vector<float> xs(names.size());
-    for (size_t k = 0; k < names.size(); ++k) {
-        if (!parse_real(words[k + 1], xs[k]))
-            throw Error(at + names[k] + ": '" + printable(words[k + 1], 40) +
-                        "' is not a finite number");
-    }
+    // The flags' parser: a number reads the same on the command line and in a view file
+    for (size_t k = 0; k < names.size(); ++k)
+        xs[k] = parse_flag_number(at + names[k], std::string(words[k + 1]));
     return xs;
 }
 
@@ -143,9 +142,7 @@ void save_view_file(const std::string& path, const View& view,
                     const std::vector<PointLight>& lights,
                     const RenderSettings* settings) {
     check_output_path(path, OutputKind::text, "view file");
-    std::ofstream out(path);
-    out << format_view_file(view, lights, settings);
-    if (!out.flush()) throw Error(printable(path) + ": cannot write the view file");
+    write_file(path, format_view_file(view, lights, settings), "view file");
 }
 
 ViewFile load_view_file(const std::string& path) {

@@ -14,6 +14,7 @@
 #include <future>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -65,8 +66,11 @@ struct PanelState {
     View view_edit;          ///< the camera fields; applied only when valid
     std::string view_error;  ///< why view_edit is not applied
     int size_edit[2] = {640, 480};
-    int scene_choice = 0;  ///< index into builtin_scene_names()
-    float modules_end = 0, scroll_max = 0, window_height = 0;  ///< panel layout (log)
+    int scene_choice = 0;                     ///< index into builtin_scene_names()
+    float modules_top = 0, modules_end = 0;   ///< the Modules section (log)
+    float scroll_max = 0, window_height = 0;  ///< panel layout (log)
+    bool hint_dismissed = false;              ///< the first-run hint's "Got it"
+    std::set<std::string> widgets_logged;     ///< note_widget's names
     bool scroll_to_inspector = false;  ///< --pin: show the inspector at the panel's top
     float ui_scale_edit = 0.0f;        ///< the UI scale slider while it is dragged
     int grade_shown = -1;              ///< module whose grader output is shown; -1: none
@@ -182,6 +186,7 @@ struct Viewer {
     int extra_frames = 2;           ///< frames to draw before sleeping (ImGui settles)
     bool screenshot_requested = false;  ///< F12: write the window at the end of a frame
     bool quit = false;
+    bool initial_scene_failed = false;  ///< the command line's OBJ did not load
 };
 
 }  // namespace raylab::viewer

@@ -4,6 +4,7 @@
 #include "raylab/error.h"
 #include "raylab/input_checks.h"
 #include "raylab/input_file.h"
+#include "raylab/options.h"
 
 namespace raylab::viewer {
 
@@ -14,19 +15,13 @@ bool is_flag(const std::string& word) {
 }
 
 int parse_count(const std::string& flag, const std::string& text, int lo, int hi) {
-    long long x = 0;
-    if (!parse_whole(text, lo, hi, x)) {
-        throw Error(flag + ": '" + printable(text) + "' is not a whole number in " +
-                    std::to_string(lo) + ".." + std::to_string(hi));
-    }
-    return static_cast<int>(x);
+    return static_cast<int>(parse_flag_whole(flag, text, lo, hi));
 }
 
 float parse_scale(const std::string& text) {
-    char* end = nullptr;
-    const float x = std::strtof(text.c_str(), &end);
-    if (text.empty() || *end != '\0' || !(x >= 0.5f && x <= 3.0f))
-        throw Error("--ui-scale: '" + text + "' is not a number in 0.5..3");
+    const float x = parse_flag_number("--ui-scale", text);
+    if (!(x >= kMinUiScale && x <= kMaxUiScale))
+        throw Error("--ui-scale: " + printable(text) + " is outside 0.5..3");
     return x;
 }
 
@@ -40,7 +35,8 @@ void parse_window(const std::string& text, ViewerOptions& o) {
 
 }  // namespace
 
-ViewerOptions parse_viewer_options(const std::vector<std::string>& extra) {
+ViewerOptions parse_viewer_options(const std::vector<std::string>& extra, int image_width,
+                                   int image_height) {
     ViewerOptions o;
     for (size_t k = 0; k < extra.size(); ++k) {
         const std::string& flag = extra[k];
@@ -81,9 +77,11 @@ ViewerOptions parse_viewer_options(const std::vector<std::string>& extra) {
             const std::string text = value();
             const size_t comma = text.find(',');
             if (comma == std::string::npos)
-                throw Error("--pin: '" + text + "' is not I,J");
-            o.pin_i = parse_count(flag, text.substr(0, comma), 0, 16383);
-            o.pin_j = parse_count(flag, text.substr(comma + 1), 0, 16383);
+                throw Error("--pin: '" + printable(text) + "' is not I,J");
+            // A pixel of the image: I in 0..width-1, J in 0..height-1
+            o.pin_i = parse_count("--pin: I", text.substr(0, comma), 0, image_width - 1);
+            o.pin_j =
+                parse_count("--pin: J", text.substr(comma + 1), 0, image_height - 1);
         } else if (flag == "--ui-scale") {
             o.ui_scale = parse_scale(value());
         } else if (flag == "--compare") {

@@ -10,6 +10,9 @@
 
 namespace raylab::viewer {
 
+constexpr float kMinUiScale = 0.5f;  ///< --ui-scale and the panel's slider
+constexpr float kMaxUiScale = 3.0f;
+
 struct ViewerOptions {
     int frames = 0;           ///< --frames N: quit after N frames of the finished image
     std::string screenshot;   ///< --screenshot FILE.png: the window, at the last frame
@@ -28,9 +31,10 @@ struct ViewerOptions {
     bool run_tests = false;     ///< --run-tests: run the graders at start
 };
 
-/// Parses the flags parse_options left in Options::extra. Throws raylab::Error naming the
-/// flag.
-ViewerOptions parse_viewer_options(const std::vector<std::string>& extra);
+/// Parses the flags parse_options left in Options::extra; --pin must name a pixel of the
+/// image_width x image_height image. Throws raylab::Error naming the flag.
+ViewerOptions parse_viewer_options(const std::vector<std::string>& extra,
+                                   int image_width = 640, int image_height = 480);
 
 /// The help text of the viewer's own flags.
 std::string viewer_options_help();

@@ -25,7 +25,9 @@ T=$(mktemp -d "${TMPDIR:-/tmp}/raylab-bad.XXXXXX")
 trap 'chmod -R u+rwx "$T" 2>/dev/null; rm -rf "$T"' EXIT
 
 # Fixtures that cannot live in git: FIFOs, devices, folders, unreadable and large files
-mkfifo "$T/fifo.obj" "$T/fifo.view" "$T/fifo.mtl"
+mkfifo "$T/fifo.obj" "$T/fifo.view" "$T/fifo.mtl" "$T/fifo.png"
+ln -s /dev/full "$T/full.png"
+ln -s "$T/no/such/x.png" "$T/dangling.png"
 mkdir -p "$T/dir.obj" "$T/ro" "$T/dir.png"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$T/ok.obj"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$T/unreadable.obj"
@@ -51,6 +53,7 @@ while IFS=$'\t' read -r id entry want fragment input || [[ -n $id ]]; do
         if ((EUID == 0)); then skipped=$((skipped + 1)); continue; fi
     fi
     input=${input//@T@/$T}
+    fragment=${fragment//@T@/$T}
     input=${input//@D@/$data}
     out=$T/out.png
     case $entry in

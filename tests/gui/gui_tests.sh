@@ -10,8 +10,11 @@
 #   focus        keys typed into a panel text field move nothing
 #   run-tests    "Run tests" grades in child processes (a fake grader crashes in one
 #                module) and --report writes the folder
-#   small-panel  at 1024x640 and UI scale 1.5 the module rows stay reachable (the panel
-#                scrolls) and the image region still equals raylab-render's (no overlay)
+#   small-panel  at 1024x640 and UI scale 1.5 the module rows stay on the first screen and
+#                the image region still equals raylab-render's (no overlay)
+#   first-screen at the default 1280x800, UI scale 1 and 1.5: the Modules section comes
+#                first and ends within the window (no scrolling), the debug view opens
+#                clear of the panel, the inspector shows the reference's ray
 #   inspector    a pinned pixel in the box's shadow: with the shadow stub the student's
 #                side is lit, the reference's shadow ray is blocked by a named triangle
 #   debug-view   the 3D debug view draws the scene and the pinned pixel's rays
@@ -25,9 +28,15 @@
 set -u
 case_name=$1 viewer=$2 render=$3 png_diff=$4 work=$5
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
-xvfb() { xvfb-run -a -s '-screen 0 1280x800x24' "$@"; }
+xvfb() { xvfb-run -a -s '-screen 0 1280x1024x24' "$@"; }
 fail() { echo "FAIL: $*"; exit 1; }
 need() { command -v "$1" > /dev/null || { echo "SKIP: $1 not installed"; exit 77; }; }
+
+# "panel: modules start at S, end at E, window H, scroll max M" as "S E H M"
+n='\([0-9]*\)'
+panel_line() {
+    sed -n "s/.*modules start at $n, end at $n, window $n, scroll max $n.*/\\1 \\2 \\3 \\4/p" "$1"
+}
 
 # The value of KEY (eye, lookat, light) in a view file, as "x y z" (light: position)
 field() { awk -v k="$2" '$1 == k { print $2, $3, $4; exit }' "$1"; }
@@ -41,6 +50,11 @@ drive() {
         "$viewer" --save-view view.txt "$@" > out.txt 2>&1 &
         pid=$!
         for _ in $(seq 600); do grep -q "^rendered" out.txt && break; sleep 0.1; done
+        # "panel: widget NAME at X,Y size WxH" as "X Y W H"
+        widget() {
+            for _ in $(seq 100); do grep -q "widget $1 at" out.txt && break; sleep 0.1; done
+            sed -n "s/^panel: widget $1 at \([0-9]*\),\([0-9]*\) size \([0-9]*\)x\([0-9]*\)$/\1 \2 \3 \4/p" out.txt
+        }
         wid=$(xdotool search --sync --onlyvisible --name "^raylab - " | head -n 1)
         xdotool windowfocus --sync "$wid" 2> /dev/null || true
         eval "$steps"
@@ -102,7 +116,8 @@ keys)
 focus)
     need xvfb-run; need xdotool
     # Click into the OBJ path field (top of the panel), then hold Up and type "wasd"
-    drive 'xdotool mousemove --window "$wid" 120 82 click 1; sleep 0.2
+    drive 'read -r x y _ < <(widget obj-path)
+           xdotool mousemove --window "$wid" $((x + 20)) $((y + 8)) click 1; sleep 0.2
            xdotool keydown Up; sleep 0.4; xdotool keyup Up
            xdotool type --delay 50 wasd; sleep 0.2' --width 160 --height 120 ||
         { cat out.txt; fail "the viewer failed"; }
@@ -148,12 +163,27 @@ small-panel)
     [ "${w:-}" = 320 ] || fail "image region not 320 wide: '${w:-}'"
     "$png_diff" shot.png render.png --crop "$x,$y,$w,$h" --tolerance 2 ||
         fail "something covers the image (window region differs from raylab-render)"
-    # "panel: modules end at E, window H, scroll max S": the last row can be scrolled to
-    pat=".*modules end at $n, window $n, scroll max $n.*"
-    read -r e ph s < <(sed -n "s/$pat/\\1 \\2 \\3/p" out.txt)
+    read -r top e ph s < <(panel_line out.txt)
     [ -n "${e:-}" ] || fail "no panel line"
-    [ "$e" -gt "$ph" ] || fail "panel fits without scrolling: the test proves nothing"
-    [ "$e" -le $((ph + s)) ] || fail "module rows end at $e, beyond $ph + scroll $s"
+    [ "$e" -le "$ph" ] || fail "module rows end at $e, below the window's $ph"
+    ;;
+first-screen)
+    need xvfb-run
+    for scale in 1 1.5; do
+        xvfb "$viewer" --ui-scale "$scale" --pin 400,300 --student camera --debug-view \
+            --frames 3 --screenshot "shot-$scale.png" > out.txt 2>&1 ||
+            { cat out.txt; fail "the viewer failed at UI scale $scale"; }
+        cat out.txt
+        read -r top e ph s < <(panel_line out.txt)
+        [ -n "${e:-}" ] || fail "no panel line"
+        # Modules first (below the first-run hint only), ending on screen
+        limit=$([ "$scale" = 1 ] && echo 200 || echo 300)
+        [ "$top" -le "$limit" ] ||
+            fail "UI $scale: the Modules section starts at $top, not first"
+        [ "$e" -le "$ph" ] || fail "UI $scale: module rows end at $e, below the window's $ph"
+        grep -q "^pinned (400, 300) reference ray o (0.000, 0.000, 3.000) w (0.1641, -0.1234, -0.9787)" \
+            out.txt || fail "the inspector has no reference ray"
+    done
     ;;
 inspector)
     need xvfb-run
@@ -177,16 +207,20 @@ debug-view)
     ;;
 skip)
     need xvfb-run; need xdotool
-    # The shadows checkbox and the exposure slider of the Rendering section (1280x800,
-    # UI scale 1); each step waits for the log line it causes
+    # The shadows checkbox and the exposure slider of the Rendering section (where the
+    # viewer logs them; a window 1000 high shows them unscrolled); each step waits for
+    # the log line it causes
     wait_for() { echo 'for _ in $(seq 100); do grep -q "'"$1"'" out.txt && break; sleep 0.1; done'; }
-    drive "xdotool mousemove --window \"\$wid\" 17 535 click 1
+    drive "read -r bx by _ < <(widget shadows); read -r ex ey ew eh < <(widget exposure)
+           xdotool mousemove --window \"\$wid\" \$((bx + 8)) \$((by + 8)) click 1
            $(wait_for 'shadows off')
-           xdotool mousemove --window \"\$wid\" 17 535 click 1
+           xdotool mousemove --window \"\$wid\" \$((bx + 8)) \$((by + 8)) click 1
            $(wait_for '^reused')
-           xdotool mousemove --window \"\$wid\" 133 558 mousedown 1; sleep 0.1
-           xdotool mousemove --window \"\$wid\" 200 558; sleep 0.2; xdotool mouseup 1
-           sleep 0.5" --width 160 --height 120 --report report ||
+           xdotool mousemove --window \"\$wid\" \$((ex + ew / 2)) \$((ey + 8)) mousedown 1
+           sleep 0.1
+           xdotool mousemove --window \"\$wid\" \$((ex + ew / 2 + 67)) \$((ey + 8)); sleep 0.2
+           xdotool mouseup 1
+           sleep 0.5" --window 1280x1000 --width 160 --height 120 --report report ||
         { cat out.txt; fail "the viewer failed"; }
     cat out.txt
     [ "$(grep -c '^rendered' out.txt)" = 2 ] || fail "not two renders (on, off)"

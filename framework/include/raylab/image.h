@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "raylab/contract.h"
@@ -37,7 +38,17 @@ std::vector<std::uint8_t> to_srgb8(const Image& image, float exposure);
 /// Counts pixels with a NaN or infinite component.
 size_t count_non_finite(const Image& image);
 
-/// Writes an 8-bit sRGB PNG (stb_image_write). Throws raylab::Error on failure.
+/// Writes bytes to path, which must be or become a regular file: opened without blocking
+/// (a FIFO or device is refused at once, never waited on), every write and the close
+/// checked. Throws raylab::Error "cannot write WHAT 'PATH': reason" (a full disk, a file
+/// size limit, ...).
+void write_file(const std::string& path, std::string_view bytes, const std::string& what);
+
+/// An 8-bit RGB image (rows of 3 * width bytes, top row first) as PNG file bytes.
+std::string encode_png(int width, int height, const std::uint8_t* rgb);
+
+/// Writes an 8-bit sRGB PNG (stb_image_write, then write_file). Throws raylab::Error on
+/// failure.
 void write_png(const std::string& path, const Image& image, float exposure = 0.0f);
 
 /// Writes a little-endian float PFM ("PF"), linear radiance, bottom row first as the

@@ -34,6 +34,16 @@ struct Options {
 /// flag.
 Options parse_options(int argc, const char* const* argv, bool allow_extra = false);
 
+/// The one parser of the numbers flags take (both binaries): a decimal of any length
+/// (`12`, `-2.5`, `3e-4`, `+.5`), finite as a float. No blanks, hex, `inf`, `nan`.
+/// Throws raylab::Error "FLAG: 'TEXT' is not a finite number".
+float parse_flag_number(const std::string& flag, const std::string& text);
+
+/// A whole decimal number (any number of leading zeros) in lo..hi. Throws raylab::Error
+/// naming the flag and the range.
+long long parse_flag_whole(const std::string& flag, const std::string& text, long long lo,
+                           long long hi);
+
 /// The help text for the shared flags.
 std::string options_help();
 

@@ -97,6 +97,8 @@ struct RenderSettings {
     Vec3 background{0.0f};
     /// When set and it turns true, render() stops after the tiles in flight (viewer).
     const std::atomic<bool>* cancel = nullptr;
+    /// When set: counts the tiles rendered, of render_tile_total() (a progress line).
+    std::atomic<std::int64_t>* tiles_done = nullptr;
 
     // Sampling (modules 09 and 10). The defaults are one ray through each pixel centre
     // and point lights: the renderer of modules 01-08, bit for bit.
@@ -117,6 +119,10 @@ struct RenderSettings {
 
 /// Checks sizes and thread count; throws raylab::Error naming the problem.
 void validate(const RenderSettings& settings);
+
+/// The tiles render() renders with these settings, over all its passes (the adaptive
+/// scheme has two): what settings.tiles_done counts up to.
+std::int64_t render_tile_total(const RenderSettings& settings);
 
 /// What a frame cost. Rays are counted by kind; skipped shadow rays are the ones the
 /// renderer did not need to cast.

@@ -25,7 +25,8 @@ int main(int argc, char** argv) {
         }
         if (argc >= 2 && std::strcmp(argv[1], "viewer") == 0) {
             const Options options = parse_options(argc - 1, argv + 1, true);
-            const viewer::ViewerOptions o = viewer::parse_viewer_options(options.extra);
+            const viewer::ViewerOptions o = viewer::parse_viewer_options(
+                options.extra, options.settings.width, options.settings.height);
             if (!o.load_view.empty()) (void)viewer::load_view_file(o.load_view);
             std::printf("ok\n");
             return 0;
