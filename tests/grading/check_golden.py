@@ -7,6 +7,8 @@ compares with the committed folder: the same files, the text files line for line
 images pixel for pixel within 1e-5 (relative above 1; the renderer's SIMD level may differ
 between machines). No case name or file holds "[private]": a release ships this folder.
 Usage: check_golden.py GRADING_TESTS GOLDEN_DIR SCRATCH
+       check_golden.py --compare GOLDEN_DIR WRITTEN_DIR   (two folders already written,
+       such as a release's, with the same rules)
 """
 import os
 import pathlib
@@ -15,15 +17,18 @@ import struct
 import subprocess
 import sys
 
-binary, golden, scratch = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
-shutil.rmtree(scratch, ignore_errors=True)
-scratch.mkdir(parents=True)
-env = dict(os.environ, RAYLAB_GRADE_IMPL="reference", RAYLAB_GOLDEN_WRITE=str(scratch))
-env.pop("RAYLAB_GRADE_ORACLE", None)
-run = subprocess.run([binary, "--no-colors"], env=env, capture_output=True, text=True)
-if run.returncode != 0:
-    print(run.stdout[-4000:])
-    sys.exit("the reference does not pass its graders, so no golden data was written")
+if sys.argv[1] == "--compare":
+    golden, scratch = pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
+else:
+    binary, golden, scratch = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
+    shutil.rmtree(scratch, ignore_errors=True)
+    scratch.mkdir(parents=True)
+    env = dict(os.environ, RAYLAB_GRADE_IMPL="reference", RAYLAB_GOLDEN_WRITE=str(scratch))
+    env.pop("RAYLAB_GRADE_ORACLE", None)
+    run = subprocess.run([binary, "--no-colors"], env=env, capture_output=True, text=True)
+    if run.returncode != 0:
+        print(run.stdout[-4000:])
+        sys.exit("the reference does not pass its graders, so no golden data was written")
 
 REFRESH = "refresh it: ninja -C <build> raylab-update-golden"
 problems = []
