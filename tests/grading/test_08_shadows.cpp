@@ -8,8 +8,9 @@
 // asked about: small balls on or off the segment, and the surface x lies on. Any correct
 // shadow ray passes: offset origin or tmin, cast from x or from the light, any reasonable
 // epsilon (up to 0.01 near the origin, growing with |x|). Every case that expects "lit"
-// also expects "in shadow" once a blocker is put on the segment, so a constant answer
-// earns nothing.
+// also expects "in shadow" once a blocker is put on the segment, and every case that
+// expects "in shadow" also expects "lit" once the blockers are gone, so a constant
+// answer earns nothing.
 #include <vector>
 
 #include "grading.h"
