@@ -243,6 +243,8 @@ TEST_SUITE("01_pixel_loop") {
     }
 
     TEST_CASE("the pixel loop renders the reference image of a test pattern") {
+        // The release's golden data holds this image: it counts with a fresh tile
+        needs_work("render_tile storing each pixel's radiance", work_render_tile());
         // A 37 x 23 image in 16 x 16 tiles, as the renderer cuts it, under a radiance
         // pattern of rings and stripes in (u, v); compared with the reference's image.
         const int W = 37, H = 23, S = 16;
