@@ -44,16 +44,19 @@ std::pair<int, int> cell_of(const Vec2& offset, int n) {
 // n^2 samples, every one inside [0, 1)^2 and exactly one in each cell
 bool check_one_per_cell(const std::vector<PixelSample>& samples, int n) {
     if (!RAYLAB_CHECK(samples.size() == size_t(n * n),
-                      "got " << samples.size() << " samples, expected n^2 = " << n * n))
+                      "expected n^2 = " << n * n << " samples, got " << samples.size()))
         return false;
     std::vector<int> count(size_t(n * n), 0);
     for (const PixelSample& p : samples) {
-        const auto [a, b] = cell_of(p.offset, n);
-        if (!RAYLAB_CHECK(a >= 0, "sample " << show(p) << " lies outside the pixel"))
+        // Not a structured binding: C++17 lambdas (RAYLAB_CHECK) cannot capture one
+        const std::pair<int, int> cell = cell_of(p.offset, n);
+        const int a = cell.first, b = cell.second;
+        if (!RAYLAB_CHECK(a >= 0, "expected every sample inside the pixel [0, 1)^2, got "
+                                      << show(p)))
             return false;
-        if (!RAYLAB_CHECK(
-                ++count[size_t(b * n + a)] == 1,
-                "two samples in cell (" << a << ", " << b << "), the second " << show(p)))
+        if (!RAYLAB_CHECK(++count[size_t(b * n + a)] == 1,
+                          "expected one sample in each cell, but cell ("
+                              << a << ", " << b << ") holds two, the second " << show(p)))
             return false;
     }
     return true;
