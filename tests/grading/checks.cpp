@@ -130,6 +130,17 @@ std::string diff_radiance(const char* name, const Vec3& got, const Vec3& want) {
     return "";
 }
 
+// ---- Companions ----------------------------------------------------------------------
+
+bool needs_work(const std::string& companion, const std::string& why_not) {
+    if (why_not.empty()) return true;
+    FAIL_CHECK(
+        "this case's answer can be given without doing the work (by a constant or a "
+        "table of known answers), so it counts only together with "
+        << companion << "; expected those right, but " << why_not);
+    return false;
+}
+
 // ---- Rng ------------------------------------------------------------------------------
 
 std::uint64_t Rng::next() {

@@ -176,8 +176,19 @@ void FloatReader::get(LightSample& s) {
     get(s.Li);
 }
 
+// A hidden case compares with the reference itself; golden data would put its inputs in
+// the release
+static void refuse_private(const std::string& what) {
+    if (current_case().rfind("[private]", 0) == 0)
+        FAIL("the hidden case \"" << current_case() << "\" asked for golden data ("
+                                  << what
+                                  << "), which a release would ship: compare with "
+                                     "reference_modules() directly");
+}
+
 Floats expected_floats(const std::string& key, const Floats& input,
                        const std::function<Floats()>& compute) {
+    refuse_private(key);
     const std::string suite = key.substr(0, key.find('/'));
     const std::string in = format_floats(input);
     if (!using_golden()) {
@@ -218,6 +229,7 @@ Floats expected_floats(const std::string& key, const Floats& input,
 Image expected_image(const std::string& suite, const std::string& stem,
                      const std::function<Image()>& compute) {
     const std::string name = suite + "-" + stem + ".pfm";
+    refuse_private(name);
     if (!using_golden()) {
         Image image = compute();
         if (!golden_record_dir().empty())
@@ -234,13 +246,15 @@ Image expected_image(const std::string& suite, const std::string& stem,
 
 std::string save_image(const std::string& name, const Image& image) {
     if (images_dir().empty()) return "";
-    const std::string path = images_dir() + "/" + name + ".pfm";
+    // The PNG for looking at it (any image viewer opens it), the PFM for its exact values
+    const std::string stem = images_dir() + "/" + name;
     try {
-        write_pfm(path, image);
+        write_pfm(stem + ".pfm", image);
+        write_png(stem + ".png", image);
     } catch (const Error&) {
         return "";
     }
-    return path;
+    return stem + ".png (and .pfm)";
 }
 
 }  // namespace raylab::grading

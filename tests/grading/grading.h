@@ -139,10 +139,15 @@ Floats inputs(const Args&... args) {
     return f;
 }
 
+/// The name of the test case under way ("" outside one).
+std::string current_case();
+
 /// The raw golden mechanism: the reference's encoded answer for the case named key
 /// ("NN_name/what/seed"). With the reference in the build, runs compute() and, when
 /// recording, stores the answer; otherwise looks key up in the golden data and checks
-/// that it was made for the same input. Fails the test case if the data is missing.
+/// that it was made for the same input. Fails the test case if the data is missing, and
+/// in a "[private]" case: a release ships the golden data, so it must not hold the
+/// inputs of the hidden cases.
 Floats expected_floats(const std::string& key, const Floats& input,
                        const std::function<Floats()>& compute);
 
@@ -166,8 +171,9 @@ T expected(const std::string& key, const Floats& input,
 Image expected_image(const std::string& suite, const std::string& stem,
                      const std::function<Image()>& compute);
 
-/// Writes image to RAYLAB_GRADE_IMAGES/name.pfm when that folder is set, so that a
-/// student can look at what the test saw. Returns the path, or "" when not written.
+/// Writes image to RAYLAB_GRADE_IMAGES/name.png and name.pfm when that folder is set, so
+/// that a student can look at what the test saw. Returns the paths for a message, or ""
+/// when not written.
 std::string save_image(const std::string& name, const Image& image);
 
 // ---------------------------------------------------------------------------------------
@@ -228,6 +234,29 @@ double scale_of(std::initializer_list<Vec3> points, double t = 0.0);
         FAIL_CHECK(__VA_ARGS__); \
         return false;            \
     }()
+
+/// Stops the test case with the message (its words say what was expected and what came)
+/// when cond is false. Test files use this and RAYLAB_CHECK, never doctest's CHECK or
+/// REQUIRE, whose failure shows the raw expression ("++count[k] == 1 is 2 == 1"): the
+/// ctest grading/messages-in-words checks it.
+#define RAYLAB_REQUIRE(cond, ...)       \
+    do {                                \
+        if (!(cond)) FAIL(__VA_ARGS__); \
+    } while (false)
+
+// ---------------------------------------------------------------------------------------
+// Cases that code doing no work could pass
+
+/// Some cases expect an answer that code doing no work gives too: the centre pixel maps
+/// to (0, 0), the Cornell box camera's basis is the world's axes, d = 1, a miss, "in
+/// shadow", weights that sum to 1, or an input whose answer the release's golden data
+/// holds. Such a case earns its point only together with a companion: cases of the same
+/// function on fresh random input (seeds no other case and no golden file uses), checked
+/// against the formula, whose answers no constant and no table gives. `companion` says
+/// what they check; `why_not` is their first failure ("" when they pass). A failed
+/// companion fails the case with a message naming both, and the case's own checks still
+/// run and report. Returns true when the companion passed.
+bool needs_work(const std::string& companion, const std::string& why_not);
 
 // ---------------------------------------------------------------------------------------
 // Random cases

@@ -137,6 +137,10 @@ struct GradeLog : doctest::IReporter {
 
 namespace raylab::grading {
 
+std::string current_case() {
+    return the_log && the_log->current ? the_log->current->m_name : "";
+}
+
 void log_line(const std::string& text) {
     if (the_log) the_log->line(text);
 }

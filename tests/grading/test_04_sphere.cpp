@@ -19,6 +19,28 @@ bool check(const Ray& r, const Sphere& s, const std::optional<Hit>& want) {
     return RAYLAB_CHECK_SAME(diff_hit(got, want, scale_of({r.o, s.c}, s.r)));
 }
 
+// Companion of the cases a constant or a table passes: rays from outside through a chosen
+// point of a fresh random sphere, towards its inside, hit it there
+std::string work_sphere() {
+    for (int seed = 0; seed < 8; ++seed) {
+        Rng rng(9600 + seed);
+        const Sphere s{rng.in_box(-5.0f, 5.0f), rng.uniform(0.2f, 3.0f)};
+        const Vec3 n = rng.direction();
+        const Vec3 p = s.c + s.r * n;
+        const Vec3 w = rng.direction_near(n, -1.0f, -0.3f);
+        const float t = s.r * rng.uniform(0.5f, 5.0f);
+        const Ray r{p - t * w, w};
+        const std::string why = diff_hit(under_test::intersect_sphere(r, s),
+                                         make_hit(t, p, n), scale_of({r.o, s.c}, s.r));
+        if (!why.empty()) return show(r) + "; " + show(s) + ": " + why;
+    }
+    return "";
+}
+
+bool sphere_work() {
+    return needs_work("rays aimed at points of fresh random spheres", work_sphere());
+}
+
 }  // namespace
 
 TEST_SUITE("04_sphere") {
@@ -42,11 +64,13 @@ TEST_SUITE("04_sphere") {
     }
 
     TEST_CASE("a sphere behind the ray's origin is not hit") {
+        sphere_work();
         // Both roots negative (t = -6 and t = -4)
         check(Ray{Vec3(0, 0, 5), Vec3(0, 0, 1)}, kUnit, std::nullopt);
     }
 
     TEST_CASE("a ray passing beside the sphere misses it") {
+        sphere_work();
         // Distance 2 from the centre of the unit sphere: b^2 - c' = 25 - 28 < 0
         check(Ray{Vec3(2, 0, 5), kDown}, kUnit, std::nullopt);
     }
@@ -57,6 +81,26 @@ TEST_SUITE("04_sphere") {
               make_hit(4.9552898f, Vec3(0.999f, 0, 0.0447102f),
                        Vec3(0.999f, 0, 0.0447102f)));
         check(Ray{Vec3(1.001f, 0, 5), kDown}, kUnit, std::nullopt);
+    }
+
+    TEST_CASE("a tangent ray touches the sphere at one point and hits it") {
+        // x = 1 grazes the unit sphere: b^2 - c' = 25 - 25 = 0 exactly (and r^2 - |f - b
+        // w|^2 = 1 - 1 = 0), a double root t = 5 at (1, 0, 0). A test disc <= 0 loses the
+        // silhouette; the contract counts it as a hit (disc < 0 misses)
+        check(Ray{Vec3(1, 0, 5), kDown}, kUnit,
+              make_hit(5.0f, Vec3(1, 0, 0), Vec3(1, 0, 0)));
+        check(Ray{Vec3(0, -2, 10), kDown}, Sphere{Vec3(0, 0, 2), 2.0f},
+              make_hit(8.0f, Vec3(0, -2, 2), Vec3(0, -1, 0)));
+    }
+
+    TEST_CASE("a hit exactly at tmin or at tmax counts: both ends are included") {
+        // Roots 4 and 6, exact in float: tmin <= t <= tmax, not <
+        check(Ray{Vec3(0, 0, 5), kDown, 4.0f, kInfinity}, kUnit,
+              make_hit(4.0f, Vec3(0, 0, 1), Vec3(0, 0, 1)));
+        check(Ray{Vec3(0, 0, 5), kDown, 0.0f, 4.0f}, kUnit,
+              make_hit(4.0f, Vec3(0, 0, 1), Vec3(0, 0, 1)));
+        check(Ray{Vec3(0, 0, 5), kDown, 4.5f, 6.0f}, kUnit,
+              make_hit(6.0f, Vec3(0, 0, -1), Vec3(0, 0, -1)));
     }
 
     TEST_CASE("the far root is returned when tmin excludes the near one") {
@@ -72,6 +116,7 @@ TEST_SUITE("04_sphere") {
     }
 
     TEST_CASE("no hit when both roots lie outside [tmin, tmax]") {
+        sphere_work();
         // Roots 4 and 6 around the interval [4.5, 5.5]
         check(Ray{Vec3(0, 0, 5), kDown, 4.5f, 5.5f}, kUnit, std::nullopt);
     }
@@ -91,6 +136,7 @@ TEST_SUITE("04_sphere") {
     }
 
     TEST_CASE("random rays and spheres agree with the reference") {
+        sphere_work();
         // Rays through two chosen points of the sphere (a chord at least 0.3 r long),
         // from outside, from inside, with tmin between the roots, tmax before them, past
         // the sphere, or beside it at 1.05 r or more from the centre

@@ -32,6 +32,31 @@ LightSample light(const Vec3& wi, const Vec3& Li) {
     return LightSample{wi, 1.0f, Li};
 }
 
+// Companion of the cases a table passes: fresh random surfaces and lights, the formula in
+// double
+std::string work_lambert() {
+    for (int seed = 0; seed < 8; ++seed) {
+        Rng rng(9900 + seed);
+        const Vec3 rho = rng.in_box(0.0f, 1.0f), Le = rng.in_box(0.0f, 0.5f);
+        const Vec3 n = rng.direction();
+        std::vector<LightSample> lights(size_t(rng.integer(1, 4)));
+        glm::dvec3 E(0.0);
+        for (LightSample& l : lights) {
+            l = LightSample{rng.direction(), rng.uniform(0.1f, 10.0f),
+                            rng.in_box(0.0f, 20.0f)};
+            E += glm::dvec3(l.Li) *
+                 std::max(0.0, glm::dot(glm::dvec3(n), glm::dvec3(l.wi)));
+        }
+        const Vec3 want(glm::dvec3(Le) + glm::dvec3(rho) / double(kPi) * E);
+        const std::string why =
+            diff_radiance("L", under_test::lambert(rho, Le, n, lights), want);
+        if (!why.empty())
+            return "lambert(rho = " + grading::show(rho) + ", Le = " + grading::show(Le) +
+                   ", n = " + grading::show(n) + ", " + show(lights) + "): " + why;
+    }
+    return "";
+}
+
 }  // namespace
 
 TEST_SUITE("07_lambert") {
@@ -125,6 +150,8 @@ TEST_SUITE("07_lambert") {
     }
 
     TEST_CASE("random surfaces and lights agree with the reference") {
+        // The release's golden data holds these answers: they count with fresh surfaces
+        needs_work("fresh random surfaces and lights", work_lambert());
         // Up to 4 lights, above and below the horizon
         for (int seed = 0; seed < 200; ++seed) {
             Rng rng(seed);

@@ -8,8 +8,9 @@
 // asked about: small balls on or off the segment, and the surface x lies on. Any correct
 // shadow ray passes: offset origin or tmin, cast from x or from the light, any reasonable
 // epsilon (up to 0.01 near the origin, growing with |x|). Every case that expects "lit"
-// also expects "in shadow" once a blocker is put on the segment, so a constant answer
-// earns nothing.
+// also expects "in shadow" once a blocker is put on the segment, and every case that
+// expects "in shadow" also expects "lit" once the blockers are gone, so a constant
+// answer earns nothing.
 #include <vector>
 
 #include "grading.h"
@@ -133,6 +134,27 @@ bool check_lit(const FakeScene& scene, const Vec3& x, const Vec3& n,
            check(with_blocker(scene, x, s), x, n, s, true);
 }
 
+// "in shadow" for scene, and "lit" once its balls are taken away: a module that always
+// answers "in shadow" earns nothing either
+bool check_dark(const FakeScene& scene, const Vec3& x, const Vec3& n,
+                const LightSample& s) {
+    FakeScene open = scene;
+    open.balls.clear();
+    open.rays.clear();
+    return check(scene, x, n, s, true) && check(open, x, n, s, false);
+}
+
+// Companion of the cases that only look at the shadow rays: with nothing in the way the
+// point is lit
+std::string work_lit() {
+    const FakeScene empty;
+    const LightSample s{Vec3(0.6f, 0.8f, 0.0f), 5.0f, Vec3(1.0f)};
+    if (under_test::in_shadow(empty, Vec3(1, 2, 3), Vec3(0, 1, 0), s))
+        return "in_shadow(x = (1, 2, 3), n = (0, 1, 0), " + show(s) +
+               ") in an empty scene: expected lit, got in shadow";
+    return "";
+}
+
 FakeScene balls(std::initializer_list<FakeScene::Ball> list) {
     FakeScene scene;
     scene.balls = list;
@@ -186,13 +208,14 @@ FakeScene surface_of(const Setup& c) {
 TEST_SUITE("08_shadows") {
     TEST_CASE("a blocker halfway to the light casts a shadow") {
         // x = 0, light at (0, 4, 0), a ball of radius 0.05 at (0, 2, 0)
-        check(balls({{Vec3(0, 2, 0), 0.05}}), Vec3(0.0f), kUp, kAbove, true);
+        check_dark(balls({{Vec3(0, 2, 0), 0.05}}), Vec3(0.0f), kUp, kAbove);
     }
 
     TEST_CASE("with nothing in the way the point is lit, and the scene is asked") {
         const FakeScene empty;
         check_lit(empty, Vec3(0.0f), kUp, kAbove);
-        RAYLAB_CHECK(!empty.rays.empty(), "in_shadow never called scene.occluded(ray)");
+        RAYLAB_CHECK(!empty.rays.empty(),
+                     "expected in_shadow to ask scene.occluded(ray), but it never did");
     }
 
     TEST_CASE("a blocker beyond the light casts no shadow") {
@@ -203,8 +226,17 @@ TEST_SUITE("08_shadows") {
     TEST_CASE(
         "a blocker just before the light casts a shadow, one just past it does not") {
         // Balls of radius 0.02 at 1% of the distance before and after the light at 4
-        check(balls({{Vec3(0, 3.96f, 0), 0.02}}), Vec3(0.0f), kUp, kAbove, true);
+        check_dark(balls({{Vec3(0, 3.96f, 0), 0.02}}), Vec3(0.0f), kUp, kAbove);
         check(balls({{Vec3(0, 4.04f, 0), 0.02}}), Vec3(0.0f), kUp, kAbove, false);
+    }
+
+    TEST_CASE("a blocker in the last 1% before a far light casts a shadow") {
+        // The light 64 units above x, a ball of radius 1/8 at 63.5 (0.8% before it): the
+        // shadow ray must reach to within an epsilon of the light, not stop at a share
+        // of the distance such as 0.99 r = 63.36 (all numbers exact in float)
+        const LightSample far{kUp, 64.0f, Vec3(1.0f)};
+        check_dark(balls({{Vec3(0, 63.5f, 0), 0.125}}), Vec3(0.0f), kUp, far);
+        check_dark(balls({{Vec3(0.5f, 63.5f, 0), 0.125}}), Vec3(0.5f, 0, 0), kUp, far);
     }
 
     TEST_CASE("a blocker behind the surface point casts no shadow") {
@@ -217,7 +249,7 @@ TEST_SUITE("08_shadows") {
 
     TEST_CASE("a blocker close to the surface still casts a shadow") {
         // A ball of radius 0.005 at height 0.02: an offset of 0.01 still sees it
-        check(balls({{Vec3(0, 0.02f, 0), 0.005}}), Vec3(0.0f), kUp, kAbove, true);
+        check_dark(balls({{Vec3(0, 0.02f, 0), 0.005}}), Vec3(0.0f), kUp, kAbove);
     }
 
     TEST_CASE("the surface does not shadow its own point (no shadow acne)") {
@@ -285,6 +317,7 @@ TEST_SUITE("08_shadows") {
     }
 
     TEST_CASE("one shadow test asks the scene one any-hit query") {
+        needs_work("a point with nothing in the way being lit", work_lit());
         const FakeScene empty;
         (void)under_test::in_shadow(empty, Vec3(0.0f), kUp, kAbove);
         RAYLAB_CHECK(empty.rays.size() == 1, "scene.occluded was called "
@@ -293,12 +326,13 @@ TEST_SUITE("08_shadows") {
     }
 
     TEST_CASE("the shadow ray has a unit direction") {
+        needs_work("a point with nothing in the way being lit", work_lit());
         // Rays have |w| = 1 (the intersection modules rely on it), also towards a light 4
         // units away
         const FakeScene empty;
         (void)under_test::in_shadow(empty, Vec3(0.0f), kUp, kAbove);
-        REQUIRE_MESSAGE(!empty.rays.empty(),
-                        "in_shadow never called scene.occluded(ray)");
+        RAYLAB_REQUIRE(!empty.rays.empty(),
+                       "expected in_shadow to ask scene.occluded(ray), but it never did");
         for (const Ray& r : empty.rays) {
             INFO(show(r));
             RAYLAB_CHECK(close(glm::length(r.w), 1.0, tol::kDirection),
@@ -307,13 +341,14 @@ TEST_SUITE("08_shadows") {
     }
 
     TEST_CASE("the shadow ray runs along the line between the point and the light") {
+        needs_work("a point with nothing in the way being lit", work_lit());
         // Its direction is +-wi, and it starts near x or near the light
         const Vec3 x(1, 2, 3), light = x + 4.0f * Vec3(0.6f, 0.8f, 0.0f);
         const LightSample s{Vec3(0.6f, 0.8f, 0.0f), 4.0f, Vec3(1.0f)};
         const FakeScene empty;
         (void)under_test::in_shadow(empty, x, Vec3(0, 0.6f, 0.8f), s);
-        REQUIRE_MESSAGE(!empty.rays.empty(),
-                        "in_shadow never called scene.occluded(ray)");
+        RAYLAB_REQUIRE(!empty.rays.empty(),
+                       "expected in_shadow to ask scene.occluded(ray), but it never did");
         for (const Ray& r : empty.rays) {
             INFO(show(r) << " for x = " << show(x) << " and the light at "
                          << show(light));

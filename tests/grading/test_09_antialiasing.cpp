@@ -44,16 +44,19 @@ std::pair<int, int> cell_of(const Vec2& offset, int n) {
 // n^2 samples, every one inside [0, 1)^2 and exactly one in each cell
 bool check_one_per_cell(const std::vector<PixelSample>& samples, int n) {
     if (!RAYLAB_CHECK(samples.size() == size_t(n * n),
-                      "got " << samples.size() << " samples, expected n^2 = " << n * n))
+                      "expected n^2 = " << n * n << " samples, got " << samples.size()))
         return false;
     std::vector<int> count(size_t(n * n), 0);
     for (const PixelSample& p : samples) {
-        const auto [a, b] = cell_of(p.offset, n);
-        if (!RAYLAB_CHECK(a >= 0, "sample " << show(p) << " lies outside the pixel"))
+        // Not a structured binding: C++17 lambdas (RAYLAB_CHECK) cannot capture one
+        const std::pair<int, int> cell = cell_of(p.offset, n);
+        const int a = cell.first, b = cell.second;
+        if (!RAYLAB_CHECK(a >= 0, "expected every sample inside the pixel [0, 1)^2, got "
+                                      << show(p)))
             return false;
-        if (!RAYLAB_CHECK(
-                ++count[size_t(b * n + a)] == 1,
-                "two samples in cell (" << a << ", " << b << "), the second " << show(p)))
+        if (!RAYLAB_CHECK(++count[size_t(b * n + a)] == 1,
+                          "expected one sample in each cell, but cell ("
+                              << a << ", " << b << ") holds two, the second " << show(p)))
             return false;
     }
     return true;
@@ -171,6 +174,59 @@ double stratified_error(int n, std::uint64_t seed) {
     return sum / 3.0;
 }
 
+// Companions of the cases a constant passes (one sample of weight 1, a constant image)
+
+// n x n samples, one in each cell, for n = 2 and 3, from both functions
+std::string work_samples() {
+    for (int n = 2; n <= 3; ++n) {
+        for (int stratified = 0; stratified <= 1; ++stratified) {
+            const auto samples = stratified
+                                     ? under_test::stratified_samples(n, rng_for(77))
+                                     : under_test::grid_samples(n);
+            const std::string call =
+                stratified
+                    ? "stratified_samples(" + std::to_string(n) + ", PixelRng seed 77)"
+                    : "grid_samples(" + std::to_string(n) + ")";
+            if (samples.size() != size_t(n * n))
+                return call + ": expected " + std::to_string(n * n) + " samples, got " +
+                       std::to_string(samples.size());
+            std::vector<int> count(size_t(n * n), 0);
+            for (const PixelSample& p : samples) {
+                const auto [a, b] = cell_of(p.offset, n);
+                if (a < 0 || count[size_t(b * n + a)]++ > 0)
+                    return call + ": expected one sample in each cell, but " + show(p) +
+                           (a < 0 ? " lies outside the pixel" : " shares its cell");
+            }
+        }
+    }
+    return "";
+}
+
+// The weighted sum of a radiance that varies over the pixel, at samples of random places
+// and weights
+std::string work_pixel_radiance() {
+    Rng rng(9950);
+    std::vector<PixelSample> samples(5);
+    for (PixelSample& p : samples)
+        p = PixelSample{Vec2(rng.uniform(0.0f, 1.0f), rng.uniform(0.0f, 1.0f)),
+                        rng.uniform(0.05f, 0.4f)};
+    const PixelRadiance ramp = [](const Vec2& uv) {
+        return Vec3(1.0f + uv.x, 2.0f - uv.y, 3.0f + uv.x * uv.y);
+    };
+    glm::dvec3 want(0.0);
+    for (const PixelSample& p : samples) {
+        const double u = ((7 + double(p.offset.x)) / kW - 0.5) * kW / kH,
+                     v = 0.5 - (4 + double(p.offset.y)) / kH;
+        want += double(p.weight) * glm::dvec3(1 + u, 2 - v, 3 + u * v);
+    }
+    const std::string why = diff_radiance(
+        "L", under_test::pixel_radiance(7, 4, kW, kH, samples, ramp), Vec3(want));
+    return why.empty() ? ""
+                       : "pixel_radiance(7, 4, 24, 16, five samples of random "
+                         "places and weights, radiance (1 + u, 2 - v, 3 + u v)): " +
+                             why;
+}
+
 }  // namespace
 
 TEST_SUITE("09_antialiasing") {
@@ -205,6 +261,7 @@ TEST_SUITE("09_antialiasing") {
     }
 
     TEST_CASE("the weights of a pixel's samples sum to 1") {
+        needs_work("n x n samples, one in each cell", work_samples());
         for (int n = 1; n <= 8; ++n) {
             INFO("n = " << n << ", PixelRng seed 3");
             check_weights(under_test::grid_samples(n), n);
@@ -220,9 +277,9 @@ TEST_SUITE("09_antialiasing") {
         const auto b = under_test::stratified_samples(4, rng_for(5));
         const auto c = under_test::stratified_samples(4, rng_for(6));
         INFO("n = 4, PixelRng seeds 5, 5 and 6");
-        REQUIRE_MESSAGE(a.size() == 16, "expected 16 samples, got " << a.size());
-        REQUIRE(b.size() == 16);
-        REQUIRE(c.size() == 16);
+        RAYLAB_REQUIRE(a.size() == 16, "expected 16 samples, got " << a.size());
+        RAYLAB_REQUIRE(b.size() == 16, "expected 16 samples, got " << b.size());
+        RAYLAB_REQUIRE(c.size() == 16, "expected 16 samples, got " << c.size());
         bool same = true, moved = false;
         for (size_t k = 0; k < 16; ++k) {
             same = same && a[k].offset == b[k].offset;
@@ -234,7 +291,8 @@ TEST_SUITE("09_antialiasing") {
         const int count = 400;
         for (int seed = 0; seed < count; ++seed) {
             const auto one = under_test::stratified_samples(1, rng_for(100 + seed));
-            REQUIRE_MESSAGE(one.size() == 1, "n = 1 gave " << one.size() << " samples");
+            RAYLAB_REQUIRE(one.size() == 1,
+                           "n = 1: expected 1 sample, got " << one.size());
             for (int d = 0; d < 2; ++d) {
                 mean[d] += one[0].offset[d] / count;
                 square[d] += one[0].offset[d] * one[0].offset[d] / count;
@@ -247,6 +305,37 @@ TEST_SUITE("09_antialiasing") {
             RAYLAB_CHECK(
                 std::abs(mean[d] - 0.5) < 0.05 && std::abs(var - 1.0 / 12) < 0.02,
                 "the samples are not uniform over their cell");
+        }
+    }
+
+    TEST_CASE("each cell of a stratified pixel is jittered independently") {
+        // The place inside its cell, offset n - (a, b), must differ from cell to cell: a
+        // copy of the generator per cell (PixelRng passed or copied by value) jitters
+        // every cell alike, and the pattern repeats in each cell
+        for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+            const int n = 4;
+            const auto samples = under_test::stratified_samples(n, rng_for(seed));
+            INFO("stratified_samples(n = 4, PixelRng seed " << seed << ")");
+            RAYLAB_REQUIRE(samples.size() == size_t(n * n),
+                           "expected 16 samples, got " << samples.size());
+            std::vector<Vec2> jitter;
+            for (const PixelSample& p : samples) {
+                const auto [a, b] = cell_of(p.offset, n);
+                jitter.push_back(p.offset * float(n) - Vec2(float(a), float(b)));
+            }
+            for (size_t k = 0; k < jitter.size(); ++k) {
+                for (size_t m = k + 1; m < jitter.size(); ++m) {
+                    const Vec2 d = glm::abs(jitter[k] - jitter[m]);
+                    if (!RAYLAB_CHECK(d.x > 1e-5f || d.y > 1e-5f,
+                                      "expected a different place in each cell, but "
+                                          << show(samples[k]) << " and "
+                                          << show(samples[m]) << " sit at the same place "
+                                          << grading::show(jitter[k])
+                                          << " of their cells: draw every cell's numbers "
+                                             "from the one generator, in turn"))
+                        return;
+                }
+            }
         }
     }
 
@@ -264,8 +353,9 @@ TEST_SUITE("09_antialiasing") {
         };
         (void)under_test::pixel_radiance(5, 2, kW, kH, samples, record);
         INFO("pixel_radiance(5, 2, 24, 16, three samples)");
-        REQUIRE_MESSAGE(asked.size() == 3,
-                        "radiance was called " << asked.size() << " times, expected 3");
+        RAYLAB_REQUIRE(asked.size() == 3,
+                       "expected radiance to be called 3 times, once per sample, got "
+                           << asked.size() << " calls");
         for (size_t k = 0; k < 3; ++k) {
             const Vec2 st = samples[k].offset;
             const Vec2 want(((5 + st.x) / 24.0f - 0.5f) * 1.5f,
@@ -293,6 +383,8 @@ TEST_SUITE("09_antialiasing") {
     }
 
     TEST_CASE("a constant image stays exact with any number of samples") {
+        needs_work("n x n samples, one in each cell", work_samples());
+        needs_work("the weighted sum over a radiance that varies", work_pixel_radiance());
         const Vec3 c(0.3f, 0.7f, 1.9f);
         const PixelRadiance constant = [&](const Vec2&) { return c; };
         for (int n = 1; n <= 8; ++n) {
@@ -352,6 +444,16 @@ TEST_SUITE("09_antialiasing") {
         check_refine({Vec3(0.5f), Vec3(0.5f), Vec3(0.5f)}, 0.1f, false);
         // The same values with a threshold of 0.05: 0.091 > 0.05
         check_refine({Vec3(0.5f), Vec3(0.5f), Vec3(0.6f)}, 0.05f, true);
+    }
+
+    TEST_CASE("a contrast exactly at the threshold does not refine: C > threshold") {
+        // (0.75 - 0.25) / (0.75 + 0.25) = 0.5 and (0.625 - 0.375) / 1 = 0.25, exact in
+        // float: refine only where the contrast exceeds the threshold
+        check_refine({Vec3(0.25f), Vec3(0.75f)}, 0.5f, false);
+        check_refine({Vec3(0.375f), Vec3(0.625f)}, 0.25f, false);
+        // Paired: just below the contrast, both refine
+        check_refine({Vec3(0.25f), Vec3(0.75f)}, 0.4375f, true);
+        check_refine({Vec3(0.375f), Vec3(0.625f)}, 0.1875f, true);
     }
 
     TEST_CASE("the contrast is relative: the same step is larger in the dark") {

@@ -52,8 +52,9 @@ AreaLight ceiling_light(const Vec3& c, float a, const Vec3& Le) {
 double irradiance(const AreaLight& light, const Vec3& x, const Vec3& n, int N,
                   bool stratified, std::uint64_t seed) {
     const auto xi = under_test::light_sample_points(N, stratified, rng_for(seed));
-    REQUIRE_MESSAGE(xi.size() == size_t(N),
-                    "light_sample_points(" << N << ") gave " << xi.size() << " points");
+    RAYLAB_REQUIRE(xi.size() == size_t(N), "light_sample_points(" << N << "): expected "
+                                                                  << N << " points, got "
+                                                                  << xi.size());
     double E = 0.0;
     for (const Vec2& p : xi) {
         const LightSample s = under_test::sample_area_light(light, x, p, N);
@@ -106,8 +107,8 @@ bool check_sample(const AreaLight& light, const Vec3& x, const Vec2& xi, int N,
 // {y = h, x > 0} (a blocker with a straight edge along z)
 double visible_share(const AreaLight& light, const Vec3& x, float h, int N) {
     const auto xi = under_test::light_sample_points(N, true, rng_for(77));
-    REQUIRE_MESSAGE(xi.size() == size_t(N),
-                    "light_sample_points gave " << xi.size() << " points");
+    RAYLAB_REQUIRE(xi.size() == size_t(N),
+                   "light_sample_points: expected " << N << " points, got " << xi.size());
     int visible = 0;
     for (const Vec2& p : xi) {
         const LightSample s = under_test::sample_area_light(light, x, p, N);
@@ -173,7 +174,7 @@ TEST_SUITE("10_area_light") {
         const auto xi = under_test::light_sample_points(2000, false, rng_for(1));
         const auto again = under_test::light_sample_points(2000, false, rng_for(1));
         INFO("light_sample_points(2000, uniform, PixelRng seed 1)");
-        REQUIRE_MESSAGE(xi.size() == 2000, "got " << xi.size() << " points");
+        RAYLAB_REQUIRE(xi.size() == 2000, "expected 2000 points, got " << xi.size());
         RAYLAB_CHECK(xi == again, "the same seed gave different points");
         double mean[2] = {0, 0}, square[2] = {0, 0};
         for (const Vec2& p : xi) {
@@ -209,15 +210,21 @@ TEST_SUITE("10_area_light") {
                                                 << seed << "): cells " << N_x << " x "
                                                 << N_y);
                 const auto xi = under_test::light_sample_points(N, true, rng_for(seed));
-                REQUIRE_MESSAGE(xi.size() == size_t(N), "got " << xi.size() << " points");
+                RAYLAB_REQUIRE(xi.size() == size_t(N),
+                               "expected " << N << " points, got " << xi.size());
                 std::vector<int> count(size_t(N), 0);
                 for (const Vec2& p : xi) {
                     const bool inside = p.x >= 0 && p.x < 1 && p.y >= 0 && p.y < 1;
-                    REQUIRE_MESSAGE(inside, "the point " << show(p) << " is outside");
+                    RAYLAB_REQUIRE(inside,
+                                   "expected every point inside the unit square "
+                                   "[0, 1)^2, got "
+                                       << show(p));
                     const int a = std::min(int(p.x * N_x), N_x - 1);
                     const int b = std::min(int(p.y * N_y), N_y - 1);
-                    REQUIRE_MESSAGE(++count[size_t(b * N_x + a)] == 1,
-                                    "two points in cell (" << a << ", " << b << ")");
+                    RAYLAB_REQUIRE(++count[size_t(b * N_x + a)] == 1,
+                                   "expected one point in each cell, but cell ("
+                                       << a << ", " << b << ") holds two, the second "
+                                       << show(p));
                 }
             }
         }

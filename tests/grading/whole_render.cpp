@@ -39,12 +39,22 @@ ModuleTable mixed(Module m) {
     return t;
 }
 
-Image render_with(const ModuleTable& table, const View* view = nullptr) {
+// Module 09 is called only when a pixel takes several samples: its render takes 2 x 2
+// grid samples at half the size, the same number of rays (the grid alone: stratified
+// samples may draw their numbers in any order, so their image need not match the
+// reference's)
+Image render_with(const ModuleTable& table, Module m, const View* view = nullptr) {
     const Scene scene = dtu_scene();
     RenderSettings settings;
     settings.width = kWidth;
     settings.height = kHeight;
     settings.threads = 1;  // one call at a time through the worker
+    if (m == Module::antialiasing) {
+        settings.width = kWidth / 2;
+        settings.height = kHeight / 2;
+        settings.spp = 4;
+        settings.sampling = PixelSampling::grid;
+    }
     Image image;
     render(scene, view ? *view : scene.view, settings, table, image);
     return image;
@@ -77,14 +87,17 @@ void check_whole_render(Module m, bool hidden = false) {
     const View view = hidden ? hidden_view(m) : dtu_scene().view;
     if (hidden && using_golden())
         FAIL("the private cases need the reference solutions in the build");
-    // One golden image for every module: the reference's own render of the scene
-    const Image want = hidden ? render_with(reference_modules(), &view)
-                              : expected_image("dtu", "whole-render", [&] {
-                                    return render_with(reference_modules());
-                                });
-    const Image got = render_with(mixed(m), &view);
-    REQUIRE(got.width == want.width);
-    REQUIRE(got.height == want.height);
+    // One golden image for modules 01-08, the reference's own render of the scene, and
+    // one for 09's sampled render
+    const bool sampled = m == Module::antialiasing;
+    const Image want =
+        hidden ? render_with(reference_modules(), m, &view)
+               : expected_image("dtu", sampled ? "whole-render-grid4" : "whole-render",
+                                [&] { return render_with(reference_modules(), m); });
+    const Image got = render_with(mixed(m), m, &view);
+    RAYLAB_REQUIRE(got.width == want.width && got.height == want.height,
+                   "the image is " << got.width << " x " << got.height << ", expected "
+                                   << want.width << " x " << want.height);
     int off = 0, first_i = -1, first_j = -1;
     for (int j = 0; j < got.height; ++j) {
         for (int i = 0; i < got.width; ++i) {
@@ -98,7 +111,7 @@ void check_whole_render(Module m, bool hidden = false) {
     const double share = double(off) / (double(got.width) * got.height);
     std::ostringstream why;
     why << off << " of " << got.width * got.height << " pixels of the DTU scene ("
-        << kWidth << " x " << kHeight << ", module " << info.id
+        << got.width << " x " << got.height << ", module " << info.id
         << " from your code, the rest from the reference) differ from the reference's "
            "image by more than "
         << kPixel << " (at most " << kShareOff * 100 << "% may); first at pixel ("
@@ -145,5 +158,7 @@ RAYLAB_WHOLE_RENDER("07_lambert", lambert)
 RAYLAB_PRIVATE_RENDER("07_lambert", lambert)
 RAYLAB_WHOLE_RENDER("08_shadows", shadows)
 RAYLAB_PRIVATE_RENDER("08_shadows", shadows)
+RAYLAB_WHOLE_RENDER("09_antialiasing", antialiasing)
+RAYLAB_PRIVATE_RENDER("09_antialiasing", antialiasing)
 
 }  // namespace raylab::grading

@@ -6,6 +6,8 @@
 # error of this check, whatever its expected verdict: a zero from a compile error says
 # nothing about the graders (the Lambert mutant once scored zero only because it missed
 # an #include). EXPECTED names another list, whose files lie beside it (the self-test).
+# The file name "@stub" stands for the module's stub with its RAYLAB_STUB lines deleted:
+# the stub's own placeholder answers handed in as work, which must score 0.
 # Usage: check_mutants.sh ROOT WORKDIR [EXPECTED]
 set -uo pipefail
 root=$1 work=$2
@@ -16,7 +18,14 @@ fail=0
 while IFS='|' read -r file module want; do
     [[ -z $file || $file == \#* ]] && continue
     rm -rf "$work/handin" "$work/out" && mkdir -p "$work/handin"
-    cp "$here/$file" "$work/handin/$module.cpp"
+    if [[ $file == @stub ]]; then
+        stub=$root/tests/grading/stubs/$module.cpp
+        [[ -f $stub ]] || stub=$root/exercises/$module.cpp
+        grep -v 'RAYLAB_STUB(' "$stub" >"$work/handin/$module.cpp"
+        file=@stub-$module
+    else
+        cp "$here/$file" "$work/handin/$module.cpp"
+    fi
     SUBMISSION=$work/handin GRADE_OUT=$work/out GRADE_BUILD_DIR=${GRADE_BUILD_DIR:-$work/build} \
         "$root/scripts/grade.sh" >"$work/$file.log" 2>&1 || { echo "FAIL $file: grade.sh failed"; fail=1; continue; }
     verdict=$(python3 - "$work/out" "$module" <<'PY'
@@ -44,7 +53,7 @@ PY
         full) ok=$([[ -z $failed ]] && echo 1 || echo 0) ;;
         *) ok=$([[ "|$failed" == *"|$want"* ]] && echo 1 || echo 0) ;;
     esac
-    printf '%-28s %-6s %-10s want %-45s failed: %s\n' "$file" "$([[ $ok == 1 ]] && echo ok || echo FAIL)" "$score" "$want" "${failed:-none}"
+    printf '%-32s %-6s %-10s want %-45s failed: %s\n' "$file" "$([[ $ok == 1 ]] && echo ok || echo FAIL)" "$score" "$want" "${failed:-none}"
     [[ $ok == 1 ]] || fail=1
 done <"$expected"
 exit $fail
