@@ -35,7 +35,9 @@ constexpr const char* kUnnamed = "unnamed";
 constexpr size_t kMaxMaterials = size_t(1) << 16;
 
 // A material name: the rest of the line after the keyword, less spaces and tabs at
-// either end, so names with spaces (`newmtl Hard Shiny Plastic`) stay whole
+// either end, so names with spaces (`newmtl Hard Shiny Plastic`) stay whole. A `#` is
+// part of the name: exporters write names such as "Material #25", and cutting them there
+// would merge materials silently, where a name that does not match is a warning.
 std::string_view rest_of_line(std::string_view line, std::string_view keyword) {
     std::string_view rest = line.substr(keyword.data() + keyword.size() - line.data());
     const size_t first = rest.find_first_not_of(" \t");
@@ -172,6 +174,7 @@ void ObjChecker::usemtl(std::string_view name, size_t number) {
 }
 
 void ObjChecker::line(std::string_view text, size_t number) {
+    const std::string_view whole = text;
     if (const size_t hash = text.find('#'); hash != std::string_view::npos)
         text = text.substr(0, hash);
     const Words w = split_words(text);
@@ -185,7 +188,7 @@ void ObjChecker::line(std::string_view text, size_t number) {
     } else if (key == "mtllib") {
         mtllib(w, at);
     } else if (key == "usemtl") {
-        usemtl(rest_of_line(text, key), number);
+        usemtl(rest_of_line(whole, key), number);
     } else if (key == "o" || key == "g") {
         std::string& o = out_.obj;
         o.append(key).append(" ").append(w.size() > 1 ? w[1] : "unnamed").append("\n");
@@ -345,7 +348,8 @@ std::vector<Material> check_mtl(const std::string& text, const std::string& sour
     Ignored ignored;
     const std::vector<std::string_view> lines = split_lines(text, kMaxLine, source);
     for (size_t k = 0; k < lines.size(); ++k) {
-        std::string_view line = lines[k];
+        const std::string_view whole = lines[k];
+        std::string_view line = whole;
         if (const size_t hash = line.find('#'); hash != std::string_view::npos)
             line = line.substr(0, hash);
         const Words w = split_words(line);
@@ -353,7 +357,7 @@ std::vector<Material> check_mtl(const std::string& text, const std::string& sour
         const std::string at = where(source, k + 1);
         const std::string_view key = w[0];
         if (key == "newmtl") {
-            std::string name(rest_of_line(line, key));
+            std::string name(rest_of_line(whole, key));
             if (name.empty()) {
                 warn(progress, at + "'newmtl' without a name: the material is called '" +
                                    kUnnamed + "'");

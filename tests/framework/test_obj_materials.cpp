@@ -72,6 +72,18 @@ TEST_SUITE("obj") {
         CHECK(scene.materials[1].rho == Vec3(0.1f, 0.2f, 0.3f));
     }
 
+    TEST_CASE("a '#' in a material name is part of it") {
+        Load load;
+        load.mtl["m.mtl"] =
+            "newmtl Material #1\nKd 1 0 0\nnewmtl Material #2\nKd 0 0 1\n";
+        const Scene scene =
+            load("mtllib m.mtl # the library\n" + kSquare +
+                 "usemtl Material #1\nf 1 2 3\nusemtl Material #2\nf 2 4 3\n");
+        CHECK(load.warnings.empty());
+        CHECK(corner_materials(scene) ==
+              std::vector<std::string>{"Material #1", "Material #2"});
+    }
+
     TEST_CASE("a material without a name is called 'unnamed', with a warning") {
         Load load;
         load.mtl["m.mtl"] = "newmtl\nKd 0.5 0.25 0\nnewmtl b\nKd 0 0 1\n";
@@ -85,8 +97,7 @@ TEST_SUITE("obj") {
 
         // No such material: the default, and one warning for all such lines
         Load bare;
-        const Scene plain =
-            bare(kSquare + "usemtl\t\nf 1 2 3\nusemtl   # comment\nf 2 4 3\n");
+        const Scene plain = bare(kSquare + "usemtl\t\nf 1 2 3\nusemtl   \nf 2 4 3\n");
         CHECK(corner_materials(plain) == std::vector<std::string>{"default", "default"});
         CHECK(bare.warnings == std::vector<std::string>{
                                    "t.obj:5: 'usemtl' without a name (and 1 more "
