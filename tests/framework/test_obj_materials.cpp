@@ -138,7 +138,7 @@ TEST_SUITE("obj") {
                              Error);
     }
 
-    TEST_CASE("usemtl names resolve after every mtllib; unknown ones are one warning") {
+    TEST_CASE("usemtl names resolve after every mtllib, unknown ones in one warning") {
         Load load;
         load.mtl["m.mtl"] = "newmtl Red\nKd 1 0 0\nnewmtl Red\nKd 0 1 0\n";
         std::string obj = kSquare + "usemtl Red\nf 1 2 3\n";
