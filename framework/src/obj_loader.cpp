@@ -75,7 +75,8 @@ void add_materials(Scene& scene, const std::vector<Material>& materials) {
         scene.materials.push_back(m);
         scene.materials.back().rho = glm::clamp(m.rho, Vec3(0.0f), Vec3(1.0f));
     }
-    scene.materials.push_back(Material{"default", Vec3(0.75f), Vec3(0.0f)});
+    scene.materials.push_back(
+        Material{"default", Vec3(obj::kDefaultDiffuse), Vec3(0.0f)});
 }
 
 // One triangle of the mesh, or false when it has no area (it could never be hit)

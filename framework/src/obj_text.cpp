@@ -65,6 +65,37 @@ struct Ignored {
     }
 };
 
+// MTL materials without a `Kd` line: one warning each for the first few, then one for
+// the rest, so a file of bare `newmtl` lines cannot flood the terminal
+struct NoDiffuse {
+    static constexpr size_t kNamed = 8;
+    size_t count = 0;
+    size_t first_summed_line = 0;
+    void add(const LoadProgress& progress, const std::string& source, size_t line,
+             const std::string& name) {
+        if (++count > kNamed) {
+            if (count == kNamed + 1) first_summed_line = line;
+            return;
+        }
+        warn(progress, where(source, line) + "material " + word_text(name) +
+                           " has no Kd: it gets the default diffuse colour (" + grey() +
+                           ")");
+    }
+    void report(const LoadProgress& progress, const std::string& source) const {
+        if (count <= kNamed) return;
+        warn(progress, where(source, first_summed_line) + "and " +
+                           std::to_string(count - kNamed) +
+                           " more material(s) without Kd: they get the default "
+                           "diffuse colour (" +
+                           grey() + ") too");
+    }
+    static std::string grey() {
+        char c[16];
+        std::snprintf(c, sizeof c, "%g", kDefaultDiffuse);
+        return std::string(c) + " " + c + " " + c;
+    }
+};
+
 // The numbers after the keyword: between lo and hi of them, each strictly parsed
 std::vector<float> numbers(const Words& words, size_t lo, size_t hi,
                            const char* const* names, const std::string& at) {
@@ -346,6 +377,16 @@ std::vector<Material> check_mtl(const std::string& text, const std::string& sour
     static const char* const one[] = {"value"};
     std::vector<Material> out;
     Ignored ignored;
+    NoDiffuse no_diffuse;
+    // The open material's newmtl line, and whether it has had a Kd line: tinyobjloader's
+    // diffuse is 0 without one, and textured exports often give only `map_Kd`
+    size_t newmtl_line = 0;
+    bool has_kd = true;
+    const auto close_material = [&] {
+        if (has_kd) return;
+        out.back().rho = Vec3(kDefaultDiffuse);
+        no_diffuse.add(progress, source, newmtl_line, out.back().name);
+    };
     const std::vector<std::string_view> lines = split_lines(text, kMaxLine, source);
     for (size_t k = 0; k < lines.size(); ++k) {
         const std::string_view whole = lines[k];
@@ -363,7 +404,10 @@ std::vector<Material> check_mtl(const std::string& text, const std::string& sour
                                    kUnnamed + "'");
                 name = kUnnamed;
             }
+            close_material();
             out.push_back(Material{std::move(name), Vec3(0.0f), Vec3(0.0f)});
+            newmtl_line = k + 1;
+            has_kd = false;
         } else if (out.empty()) {
             throw Error(at + "not an MTL file: " + word_text(key) +
                         " comes before any 'newmtl'");
@@ -379,7 +423,10 @@ std::vector<Material> check_mtl(const std::string& text, const std::string& sour
                                 " is outside [0, 1e6]");
             }
             // raylab shades with the diffuse colour and the emission only
-            if (key == "Kd") out.back().rho = Vec3(x[0], x[1], x[2]);
+            if (key == "Kd") {
+                out.back().rho = Vec3(x[0], x[1], x[2]);
+                has_kd = true;
+            }
             if (key == "Ke") out.back().Le = Vec3(x[0], x[1], x[2]);
         } else if (key == "Ns" || key == "Ni" || key == "d" || key == "Tr") {
             numbers(w, 1, 1, one, at);
@@ -387,6 +434,8 @@ std::vector<Material> check_mtl(const std::string& text, const std::string& sour
             ignored.add(k + 1, key);
         }
     }
+    close_material();
+    no_diffuse.report(progress, source);
     ignored.report(progress, source);
     return out;
 }

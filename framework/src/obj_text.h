@@ -28,6 +28,10 @@ struct CheckedObj {
     std::vector<int> slot_material;
 };
 
+/// The diffuse colour (rho, grey) of the default material, which faces without a
+/// material get, and of an MTL material without a `Kd` line.
+constexpr float kDefaultDiffuse = 0.75f;
+
 /// The mtllib name the checked OBJ text gives tinyobjloader.
 constexpr const char* kMaterialSlots = "raylab-material-slots";
 
@@ -40,8 +44,9 @@ CheckedObj check_obj(const std::string& text, const std::string& source,
                      const std::function<std::string(const std::string&)>& read_mtl,
                      const LoadProgress& progress);
 
-/// An MTL file's materials (Kd and Ke; rho and Le default to 0, as tinyobjloader's).
-/// Throws raylab::Error "SOURCE:LINE: field: problem".
+/// An MTL file's materials (Kd and Ke). A material without a `Kd` line gets rho
+/// kDefaultDiffuse, with a warning (tinyobjloader's 0 would render it black); `Kd 0 0 0`
+/// stays black. Le defaults to 0. Throws raylab::Error "SOURCE:LINE: field: problem".
 std::vector<Material> check_mtl(const std::string& text, const std::string& source,
                                 const LoadProgress& progress);
 

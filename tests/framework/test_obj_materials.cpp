@@ -127,6 +127,52 @@ TEST_SUITE("obj") {
         CHECK(some.warnings[1].rfind("t.obj:1: mtllib: c.mtl: cannot open file", 0) == 0);
     }
 
+    TEST_CASE("a material without a Kd line gets the default grey, with a warning") {
+        // Textured exports often give only map_Kd, which raylab ignores: with
+        // tinyobjloader's diffuse of 0 such a model rendered black without a word
+        Load load;
+        load.mtl["m.mtl"] =
+            "# textures only\nnewmtl Skin Tone\nNs 10\nmap_Kd skin.png\n"
+            "newmtl Black\nKd 0 0 0\nnewmtl Dark\nKd 0\nnewmtl Red\nKd 1 0 0\n"
+            "newmtl Glow\nKe 2 2 2\n";
+        const Scene scene = load("mtllib m.mtl\n" + kSquare +
+                                 "usemtl Skin Tone\nf 1 2 3\nusemtl Black\nf 2 4 3\n");
+        REQUIRE(scene.materials.size() == 6);  // five and the default
+        const Vec3 grey = scene.materials.back().rho;
+        CHECK(scene.materials.back().name == "default");
+        CHECK(grey == Vec3(0.75f));
+        CHECK(scene.materials[0].rho == grey);
+        CHECK(scene.materials[1].rho == Vec3(0.0f));  // Kd 0 0 0: what the file says
+        CHECK(scene.materials[2].rho == Vec3(0.0f));
+        CHECK(scene.materials[3].rho == Vec3(1.0f, 0.0f, 0.0f));
+        CHECK(scene.materials[4].rho == grey);  // the last material, closed by the end
+        CHECK(scene.materials[4].Le == Vec3(2.0f));
+        CHECK(load.warnings ==
+              std::vector<std::string>{
+                  "m.mtl:2: material 'Skin Tone' has no Kd: it gets the default diffuse "
+                  "colour (0.75 0.75 0.75)",
+                  "m.mtl:11: material 'Glow' has no Kd: it gets the default diffuse "
+                  "colour (0.75 0.75 0.75)",
+                  "m.mtl: ignored 1 line(s) raylab does not use (first: line 4, "
+                  "'map_Kd')"});
+
+        // Many: one warning each for the first eight, then one for the rest
+        Load many;
+        std::string mtl;
+        for (int k = 0; k < 20; ++k)
+            mtl += "newmtl m" + std::to_string(k) + "\n";
+        many.mtl["m.mtl"] = mtl;
+        const Scene bare = many("mtllib m.mtl\n" + kSquare + "usemtl m19\nf 1 2 3\n");
+        CHECK(bare.materials[bare.triangles[0].material].rho == Vec3(0.75f));
+        REQUIRE(many.warnings.size() == 9);
+        CHECK(many.warnings[7] ==
+              "m.mtl:8: material 'm7' has no Kd: it gets the default "
+              "diffuse colour (0.75 0.75 0.75)");
+        CHECK(many.warnings[8] ==
+              "m.mtl:9: and 12 more material(s) without Kd: they get "
+              "the default diffuse colour (0.75 0.75 0.75) too");
+    }
+
     TEST_CASE("a material library that is read must be valid") {
         Load load;
         load.mtl["m.mtl"] = "newmtl a\nKd 0.5 nan 0\n";
