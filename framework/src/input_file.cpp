@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <initializer_list>
 
 #include "raylab/error.h"
 
@@ -107,8 +108,46 @@ std::string read_input_file(const std::string& path, std::size_t max_bytes) {
     return data;
 }
 
+std::string text_encoding(std::string_view text) {
+    // A byte order mark names the encoding (UTF-32LE's begins with UTF-16LE's)
+    if (text.substr(0, 4) == std::string_view("\xFF\xFE\0\0", 4)) return "UTF-32LE";
+    if (text.substr(0, 4) == std::string_view("\0\0\xFE\xFF", 4)) return "UTF-32BE";
+    if (text.substr(0, 2) == "\xFF\xFE") return "UTF-16LE";
+    if (text.substr(0, 2) == "\xFE\xFF") return "UTF-16BE";
+    // Without one, the NUL bytes tell: OBJ, MTL and view files are mostly ASCII, so every
+    // second (UTF-16) or three in four (UTF-32) bytes are NUL, at fixed places. A NUL
+    // here and there in UTF-8 text fills no such pattern.
+    const std::string_view head = text.substr(0, 1024);
+    std::size_t zeros[4] = {0, 0, 0, 0}, count[4] = {0, 0, 0, 0};
+    for (std::size_t k = 0; k < head.size(); ++k) {
+        ++count[k % 4];
+        if (head[k] == '\0') ++zeros[k % 4];
+    }
+    // more than half of the bytes at these places of each group of four are NUL
+    const auto mostly = [&](std::initializer_list<int> places) {
+        std::size_t z = 0, n = 0;
+        for (const int p : places)
+            z += zeros[p], n += count[p];
+        return n > 0 && 2 * z > n;
+    };
+    if (head.size() >= 4) {
+        if (mostly({1}) && mostly({2}) && mostly({3}) && !mostly({0})) return "UTF-32LE";
+        if (mostly({0}) && mostly({1}) && mostly({2}) && !mostly({3})) return "UTF-32BE";
+    }
+    if (head.size() >= 2) {
+        if (mostly({1, 3}) && !mostly({0, 2})) return "UTF-16LE";
+        if (mostly({0, 2}) && !mostly({1, 3})) return "UTF-16BE";
+    }
+    return "";
+}
+
 std::vector<std::string_view> split_lines(std::string_view text, std::size_t max_line,
                                           const std::string& source) {
+    if (const std::string encoding = text_encoding(text); !encoding.empty()) {
+        throw Error(source + ": the file is " + encoding +
+                    " text; raylab reads UTF-8 (or ASCII): convert it, e.g. iconv -f " +
+                    encoding + " -t UTF-8 OLD > NEW");
+    }
     if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
     std::vector<std::string_view> lines;
     while (!text.empty()) {

@@ -1,5 +1,6 @@
 // OBJ loading with Debian's tinyobjloader (raylab/scenes.h). Every line is checked first
-// (obj_text.cpp); the library then triangulates and builds shapes and materials.
+// (obj_text.cpp), materials are read there too; the library then triangulates and
+// builds the shapes.
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -48,39 +49,34 @@ void frame_model(Scene& scene) {
     scene.lights.push_back(PointLight{p, Vec3(3.0f * r * r)});
 }
 
-class CheckedMaterials : public tinyobj::MaterialReader {
+// The one material library tinyobjloader sees: slot names "0", "1", ... for the usemtl
+// names the checks found (obj_text.h); the materials themselves are read there
+class MaterialSlots : public tinyobj::MaterialReader {
   public:
-    explicit CheckedMaterials(const std::map<std::string, std::string>& files)
-        : files_(files) {}
-    bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
-                    std::map<std::string, int>* ids, std::string* warn,
+    explicit MaterialSlots(size_t slots) : slots_(slots) {}
+    bool operator()(const std::string& name, std::vector<tinyobj::material_t>*,
+                    std::map<std::string, int>* ids, std::string*,
                     std::string* err) override {
-        const auto it = files_.find(name);
-        if (it == files_.end()) {
+        if (name != obj::kMaterialSlots) {
             if (err) *err += "mtllib '" + printable(name) + "' was not checked\n";
             return false;
         }
-        std::istringstream in(it->second);
-        tinyobj::LoadMtl(ids, materials, &in, warn, err);
+        for (size_t k = 0; k < slots_; ++k)
+            (*ids)[std::to_string(k)] = static_cast<int>(k);
         return true;
     }
 
   private:
-    const std::map<std::string, std::string>& files_;
+    size_t slots_;
 };
 
-void add_materials(Scene& scene, const std::vector<tinyobj::material_t>& materials) {
-    for (const tinyobj::material_t& m : materials) {
-        Material mat;
-        mat.name = m.name;
-        mat.rho = Vec3(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
-        mat.Le = Vec3(m.emission[0], m.emission[1], m.emission[2]);
-        if (!is_finite(mat.rho) || !is_finite(mat.Le))
-            throw Error("material '" + printable(m.name) + "' has a non-finite colour");
-        mat.rho = glm::clamp(mat.rho, Vec3(0.0f), Vec3(1.0f));
-        scene.materials.push_back(mat);
+void add_materials(Scene& scene, const std::vector<Material>& materials) {
+    for (const Material& m : materials) {
+        scene.materials.push_back(m);
+        scene.materials.back().rho = glm::clamp(m.rho, Vec3(0.0f), Vec3(1.0f));
     }
-    scene.materials.push_back(Material{"default", Vec3(0.75f), Vec3(0.0f)});
+    scene.materials.push_back(
+        Material{"default", Vec3(obj::kDefaultDiffuse), Vec3(0.0f)});
 }
 
 // One triangle of the mesh, or false when it has no area (it could never be hit)
@@ -115,7 +111,8 @@ bool make_triangle(const tinyobj::attrib_t& attrib, const tinyobj::index_t* idx,
 }
 
 void add_triangles(Scene& scene, const tinyobj::attrib_t& attrib,
-                   const std::vector<tinyobj::shape_t>& shapes, const std::string& source,
+                   const std::vector<tinyobj::shape_t>& shapes,
+                   const std::vector<int>& slot_material, const std::string& source,
                    const LoadProgress& progress) {
     const int default_material = static_cast<int>(scene.materials.size()) - 1;
     size_t faces = 0, degenerate = 0, total = 0;
@@ -139,7 +136,11 @@ void add_triangles(Scene& scene, const tinyobj::attrib_t& attrib,
                 offset += n;
                 continue;
             }
-            const int m = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
+            // tinyobjloader's material id is the slot of the face's usemtl name
+            const int slot = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
+            const int m = slot >= 0 && static_cast<size_t>(slot) < slot_material.size()
+                              ? slot_material[slot]
+                              : -1;
             t.material = m >= 0 && m < default_material ? m : default_material;
             scene.add_triangle(t, tn);
             offset += n;
@@ -170,7 +171,7 @@ Scene load_obj_text(const std::string& text, const std::string& source,
     std::vector<tinyobj::material_t> materials;
     std::string warnings, errors;
     std::istringstream in(checked.obj);
-    CheckedMaterials mtl_files(checked.mtl);
+    MaterialSlots mtl_files(checked.slot_material.size());
     if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warnings, &errors, &in,
                           &mtl_files, true, false)) {
         throw Error(
@@ -182,12 +183,8 @@ Scene load_obj_text(const std::string& text, const std::string& source,
         if (!line.empty()) obj::warn(progress, source + ": " + printable(line));
     Scene scene;
     scene.name = source;
-    try {
-        add_materials(scene, materials);
-    } catch (const Error& e) {
-        throw Error(source + ": " + e.what());
-    }
-    add_triangles(scene, attrib, shapes, source, progress);
+    add_materials(scene, checked.materials);
+    add_triangles(scene, attrib, shapes, checked.slot_material, source, progress);
     if (progress.cancel && progress.cancel->load()) throw LoadCancelled();
     if (progress.report) progress.report("BVH", 0.0f);
     scene.commit();

@@ -2,7 +2,8 @@
 //
 // Only regular files are opened (never a FIFO, device or folder: a FIFO would block, a
 // device such as /dev/zero would never end), with a size cap per kind of file and a cap
-// on every line. A UTF-8 byte order mark is dropped and CRLF line ends read as LF.
+// on every line. Text is UTF-8 (or ASCII): a UTF-8 byte order mark is dropped, UTF-16 and
+// UTF-32 are refused by name, and CRLF line ends read as LF.
 // Numbers are parsed strictly: decimal only, finite, nothing after them.
 #pragma once
 
@@ -29,8 +30,13 @@ std::string read_input_file(const std::string& path, std::size_t max_bytes);
 /// max_bytes. Throws raylab::Error.
 void check_input_file(const std::string& path, std::size_t max_bytes);
 
+/// "UTF-16LE", "UTF-16BE", "UTF-32LE" or "UTF-32BE" when text is in one of them (from its
+/// byte order mark, or without one from where its NUL bytes fall); "" otherwise.
+std::string text_encoding(std::string_view text);
+
 /// The lines of text: a leading UTF-8 BOM dropped, a CR before each LF dropped. Throws
-/// raylab::Error "SOURCE:LINE: line longer than N bytes" past max_line.
+/// raylab::Error "SOURCE: the file is UTF-16LE text; ..." for UTF-16 or UTF-32 text
+/// (text_encoding), "SOURCE:LINE: line longer than N bytes" past max_line.
 std::vector<std::string_view> split_lines(std::string_view text, std::size_t max_line,
                                           const std::string& source);
 

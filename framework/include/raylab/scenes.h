@@ -38,10 +38,12 @@ Scene cornell_box();
 Scene dtu_scene();
 
 /// Loads a Wavefront OBJ (+ MTL) with Debian's tinyobjloader: faces are triangulated, Kd
-/// becomes rho, Ke emission; faces without normals shade flat. Adds a default view that
-/// frames the model and a light above the eye. Every line is checked first
-/// (read_input_file, docs/architecture.md "Input limits"). Throws raylab::Error naming
-/// file, line and field.
+/// becomes rho (the default material's grey, with a warning, for a material without a Kd
+/// line), Ke emission; faces without normals shade flat. Adds a default view that frames
+/// the model and a light above the eye. Every line is checked first (read_input_file,
+/// docs/architecture.md "Input limits"). Throws raylab::Error naming file, line and
+/// field. A missing or unreadable MTL file is a warning, not an error: the faces that use
+/// its materials get the default material. One that is read must be valid.
 Scene load_obj(const std::string& path, const LoadProgress& progress = {});
 
 /// The same from OBJ text; read_mtl(name) returns the text of the MTL file an mtllib
