@@ -7,6 +7,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <limits>
 #include <cstdlib>
 #include <cstring>
 #include <initializer_list>
@@ -172,7 +173,7 @@ std::vector<std::string_view> split_lines(std::string_view text, std::size_t max
     return lines;
 }
 
-bool parse_real(std::string_view w, float& out) {
+Decimal parse_decimal(std::string_view w, float& out) {
     std::size_t k = 0;
     if (k < w.size() && (w[k] == '+' || w[k] == '-')) ++k;
     std::size_t digits = 0;
@@ -183,38 +184,50 @@ bool parse_real(std::string_view w, float& out) {
         while (k < w.size() && w[k] >= '0' && w[k] <= '9')
             ++k, ++digits;
     }
-    if (digits == 0) return false;
+    if (digits == 0) return Decimal::not_decimal;
     if (k < w.size() && (w[k] == 'e' || w[k] == 'E')) {
         ++k;
         if (k < w.size() && (w[k] == '+' || w[k] == '-')) ++k;
         std::size_t exp_digits = 0;
         while (k < w.size() && w[k] >= '0' && w[k] <= '9')
             ++k, ++exp_digits;
-        if (exp_digits == 0) return false;
+        if (exp_digits == 0) return Decimal::not_decimal;
     }
-    if (k != w.size() || w.size() > 64) return false;
+    if (k != w.size()) return Decimal::not_decimal;
+    // glibc's strtod reads a decimal of any length exactly: only the float's range limits
+    // it
     const std::string copy(w);
     const double x = std::strtod(copy.c_str(), nullptr);
-    if (!std::isfinite(x) || std::fabs(x) > 3.0e38) return false;
+    if (!(std::fabs(x) <= double(std::numeric_limits<float>::max())))
+        return Decimal::out_of_range;
     out = static_cast<float>(x);
-    return true;
+    return Decimal::ok;
+}
+
+bool parse_real(std::string_view w, float& out) {
+    return parse_decimal(w, out) == Decimal::ok;
 }
 
 bool parse_whole(std::string_view w, long long lo, long long hi, long long& out) {
     std::size_t k = 0;
+    const bool negative = !w.empty() && w[0] == '-';
     if (k < w.size() && (w[k] == '+' || w[k] == '-')) ++k;
-    if (k == w.size() || w.size() > 30) return false;
+    if (k == w.size()) return false;
     for (std::size_t j = k; j < w.size(); ++j)
         if (w[j] < '0' || w[j] > '9') return false;
-    const std::string copy(w);
-    errno = 0;
-    const long long x = std::strtoll(copy.c_str(), nullptr, 10);
-    if (errno == ERANGE || x < lo || x > hi) {
-        out = x;
-        return false;
+    while (k + 1 < w.size() && w[k] == '0')  // leading zeros of any number
+        ++k;
+    // 18 digits always fit a long long; a longer number saturates, beyond every range
+    // here
+    long long x = 0;
+    if (w.size() - k > 18) {
+        x = std::numeric_limits<long long>::max();
+    } else {
+        for (; k < w.size(); ++k)
+            x = 10 * x + (w[k] - '0');
     }
-    out = x;
-    return true;
+    out = negative ? -x : x;
+    return out >= lo && out <= hi;
 }
 
 std::vector<std::string_view> split_words(std::string_view line) {

@@ -108,9 +108,13 @@ std::vector<float> numbers(const Words& words, size_t lo, size_t hi,
     }
     std::vector<float> xs(n);
     for (size_t k = 0; k < n; ++k) {
-        if (!parse_real(words[k + 1], xs[k])) {
+        const Decimal read = parse_decimal(words[k + 1], xs[k]);
+        if (read != Decimal::ok) {
             throw Error(at + names[k] + ": " + word_text(words[k + 1]) +
-                        " is not a finite number");
+                        " is not a finite number" +
+                        (read == Decimal::out_of_range
+                             ? " (beyond +-3.4e38, a float's range)"
+                             : ""));
         }
     }
     return xs;

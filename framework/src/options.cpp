@@ -14,65 +14,26 @@
 
 namespace raylab {
 
-namespace {
-
-// Digits with at most one point among them, at least one digit; returns the end
-size_t scan_digits(const std::string& t, size_t k, size_t& digits, bool point) {
-    for (; k < t.size(); ++k) {
-        if (t[k] >= '0' && t[k] <= '9') {
-            ++digits;
-        } else if (point && t[k] == '.') {
-            point = false;
-        } else {
-            break;
-        }
-    }
-    return k;
-}
-
-}  // namespace
-
 float parse_flag_number(const std::string& flag, const std::string& text) {
-    // The decimal form only: strtod alone would take blanks, hex, "inf" and "nan"
-    size_t k = !text.empty() && (text[0] == '+' || text[0] == '-') ? 1 : 0;
-    size_t digits = 0, exponent_digits = 0;
-    k = scan_digits(text, k, digits, true);
-    if (digits > 0 && k < text.size() && (text[k] == 'e' || text[k] == 'E')) {
-        ++k;
-        if (k < text.size() && (text[k] == '+' || text[k] == '-')) ++k;
-        k = scan_digits(text, k, exponent_digits, false);
-        if (exponent_digits == 0) digits = 0;
+    float x = 0.0f;
+    switch (parse_decimal(text, x)) {
+        case Decimal::ok:
+            return x;
+        case Decimal::out_of_range:
+            throw Error(flag + ": '" + printable(text) +
+                        "' is not a finite number (beyond +-3.4e38, a float's range)");
+        case Decimal::not_decimal:
+            break;
     }
-    if (digits == 0 || k != text.size())
-        throw Error(flag + ": '" + printable(text) + "' is not a finite number");
-    // glibc's strtod reads a decimal of any length exactly; it is the float's range
-    // that limits the value
-    const double x = std::strtod(text.c_str(), nullptr);
-    if (!(std::fabs(x) <= double(std::numeric_limits<float>::max())))
-        throw Error(flag + ": '" + printable(text) +
-                    "' is not a finite number (beyond +-3.4e38, a float's range)");
-    return static_cast<float>(x);
+    throw Error(flag + ": '" + printable(text) + "' is not a finite number");
 }
 
 long long parse_flag_whole(const std::string& flag, const std::string& text, long long lo,
                            long long hi) {
-    const std::string range = " in " + std::to_string(lo) + ".." + std::to_string(hi);
-    size_t k = !text.empty() && (text[0] == '+' || text[0] == '-') ? 1 : 0;
-    const bool negative = k == 1 && text[0] == '-';
-    size_t digits = 0;
-    const std::string refused =
-        flag + ": '" + printable(text) + "' is not a whole number" + range;
-    if (scan_digits(text, k, digits, false) != text.size() || digits == 0)
-        throw Error(refused);
-    while (k + 1 < text.size() && text[k] == '0')  // leading zeros of any number
-        ++k;
-    // At most 18 digits fit a long long; more are beyond every range here
     long long x = 0;
-    const bool fits = text.size() - k <= 18;
-    for (; fits && k < text.size(); ++k)
-        x = 10 * x + (text[k] - '0');
-    if (negative) x = -x;
-    if (!fits || x < lo || x > hi) throw Error(refused);
+    if (!parse_whole(text, lo, hi, x))
+        throw Error(flag + ": '" + printable(text) + "' is not a whole number in " +
+                    std::to_string(lo) + ".." + std::to_string(hi));
     return x;
 }
 

@@ -50,6 +50,29 @@ TEST_SUITE("input") {
         }
     }
 
+    TEST_CASE(
+        "parse_decimal reads decimals of any length and names a value out of range") {
+        float x = 0.0f;
+        // 100,000 digits after the point still read as the decimal they are
+        CHECK(parse_decimal("0.5" + std::string(100000, '0'), x) == Decimal::ok);
+        CHECK(x == 0.5f);
+        CHECK(parse_decimal(std::string(60, '0') + "3e" + std::string(50, '0') + "1",
+                            x) == Decimal::ok);
+        CHECK(x == 30.0f);
+        CHECK(parse_decimal("1e400", x) == Decimal::out_of_range);
+        CHECK(parse_decimal("-3.5e38", x) == Decimal::out_of_range);
+        CHECK(parse_decimal("0x1p0", x) == Decimal::not_decimal);
+    }
+
+    TEST_CASE("parse_whole takes leading zeros of any length") {
+        long long x = 0;
+        CHECK(parse_whole(std::string(100, '0') + "7", 1, 100, x));
+        CHECK(x == 7);
+        CHECK_FALSE(parse_whole("1" + std::string(40, '0'), 1, 100, x));
+        CHECK(x > 100);
+        CHECK(parse_whole("+0", 0, 0, x));
+    }
+
     TEST_CASE("parse_whole reports the number it read, also out of range") {
         long long x = 0;
         CHECK_FALSE(parse_whole("99999999999", 1, 100, x));

@@ -44,8 +44,16 @@ std::vector<std::string_view> split_lines(std::string_view text, std::size_t max
 /// max_chars (then "..."): safe to print to a terminal.
 std::string printable(std::string_view text, std::size_t max_chars = 200);
 
-/// Strict decimal number: [+-]digits[.digits][(e|E)[+-]digits], finite as a float.
-/// False for nan, inf, hex, junk, an empty word or a value out of float range.
+/// How a word reads as a number (parse_decimal).
+enum class Decimal { ok, not_decimal, out_of_range };
+
+/// Strict decimal number: [+-]digits[.digits][(e|E)[+-]digits], of any length, finite as
+/// a float. not_decimal for nan, inf, hex, blanks, junk or an empty word; out_of_range
+/// beyond
+/// +-3.4e38. The one number reader of flags, view files, OBJ and MTL files.
+Decimal parse_decimal(std::string_view word, float& out);
+
+/// parse_decimal(word, out) == Decimal::ok
 bool parse_real(std::string_view word, float& out);
 
 /// Strict whole number in [lo, hi] (decimal, optional sign).
