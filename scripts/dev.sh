@@ -9,17 +9,19 @@
 #   test               everything CI checks, in build folders of its own: warnings as errors
 #                      (build-ci/), clang-format, an address and undefined-behaviour sanitizer
 #                      build (build-asan/) running the unit tests, a few seconds of each fuzz
-#                      target (build-fuzz/, when clang is installed), scripts/stress-matrix.sh
-#                      (its six configurations, when it exists), then every test in build-ci/
-#                      (GUI tests under Xvfb)
+#                      target (build-fuzz/, when clang is installed), the users' paths end to
+#                      end (tests/e2e/user_paths.sh: a student release and its checks, the
+#                      student's first commands, grade and Run tests in it, grade-class),
+#                      scripts/stress-matrix.sh (its six configurations, when it exists),
+#                      then every test in build-ci/ (GUI tests under Xvfb)
 #   build              configure and build everything in build/ (Release)
 #   grade [ARGS]       grade exercises (scripts/grade.sh [--timeout S] [--points N]
 #                      [--expect full|not-started]); env SUBMISSION=DIR grades a hand-in,
 #                      GRADE_OUT=DIR chooses where the reports go (default build/grade/)
 #   grade-reference    grade the reference solutions (scripts/grade.sh --reference) [instructor]
 #   grade-class DIR [-j N]  grade every hand-in in DIR (scripts/grade-class.sh)
-#   gradescope FILE.zip  make the Gradescope autograder package (scripts/make-gradescope.sh)
-#                      [instructor]
+#   gradescope FILE.zip [--seed N]  make the Gradescope autograder package, with the
+#                      private tests' seed N (scripts/make-gradescope.sh) [instructor]
 #   release [OUT]      make the student release (scripts/make-student-release.sh) [instructor]
 #   bench [ARGS]       build with Embree and run build/bench/raylab-bench ARGS [instructor]
 #   fuzz [SECONDS]     run each fuzz target SECONDS (default 600) in build-fuzz/ (needs clang)
@@ -268,6 +270,14 @@ cmd_test() {
     else
         warn "clang++ is missing: the fuzz targets did not run (scripts/install-deps.sh fuzz)"
     fi
+    # What instructors and students run, end to end: the release and its own checks, the
+    # README's first command in it, grade, the viewer's Run tests, grade-class. The release
+    # writes its golden data with the build above
+    if [[ -f tests/e2e/user_paths.sh ]]; then
+        step "The users' paths end to end (tests/e2e/user_paths.sh, in $CI_DIR/e2e/)"
+        RELEASE_BUILD_DIR=$RAYLAB_ROOT/$CI_DIR bash tests/e2e/user_paths.sh "$RAYLAB_ROOT" \
+            "$RAYLAB_ROOT/$CI_DIR/e2e" || die "tests/e2e/user_paths.sh failed (output above)"
+    fi
     if [[ -f scripts/stress-matrix.sh ]]; then
         # All six configurations: g++ and clang++, -O0, -O2 and -O3 -march=native (about 2
         # minutes on 2 cores without ccache)
@@ -302,7 +312,8 @@ cmd_grade_class() {
 }
 
 cmd_gradescope() {
-    (($# == 1)) || die "gradescope takes one argument, the output file or folder: gradescope OUT"
+    (($# == 1 || $# == 3)) ||
+        die "gradescope takes the zip file to write and an optional seed: gradescope FILE.zip [--seed N]"
     install_deps build libs
     run_script scripts/make-gradescope.sh "$@"
 }
