@@ -9,6 +9,7 @@
 #      one that does not compile, the rest stubs) gives the same table as `grade` on it
 #   4. the release's Markdown links resolve (scripts/check-links.sh)
 #   5. the instructor grades a generated class with ./scripts/dev.sh grade-class DIR --out X
+#   6. the instructor guide's "Adding a module", followed in a scratch copy (add_module.sh)
 # Each step prints its time. The Gradescope package runs in ctest class/gradescope-package.
 #
 # Usage: tests/e2e/user_paths.sh ROOT WORK
@@ -117,6 +118,10 @@ GRADE_BUILD_DIR=${RELEASE_BUILD_DIR:-$root/build-grade} RAYLAB_NO_INSTALL=1 \
 rows=$(($(wc -l <"$work/class-out/class.csv") - 1))
 ((rows == 3)) || fail "class.csv has $rows rows, want 3"
 sed 's/^/    /' "$work/class-out/class.csv"
+end
+
+begin "the instructor guide's \"Adding a module\" in a scratch copy (tests/e2e/add_module.sh)"
+bash "$root/tests/e2e/add_module.sh" "$root" "$work/add-module" 2>&1 | sed 's/^/    /'
 end
 
 step "e2e: every step passed"
