@@ -240,7 +240,7 @@ cmd_fuzz() {
 
 cmd_test() {
     no_args test "$@"
-    install_deps build libs gui format fuzz
+    install_deps build libs gui format test fuzz
     local t0=$SECONDS
 
     # Warnings as errors, GUI included, in a folder of its own (build/ stays lenient)

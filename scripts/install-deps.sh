@@ -12,6 +12,8 @@
 #                     the build tools and the libraries of the graders, bubblewrap, jq
 #            gui      running the GUI tests headless: Xvfb, xauth, Mesa, xdotool (alias gui-test)
 #            format   clang-format (the style check of `scripts/dev.sh test`)
+#            test     python3 (the docs' checks, the class and end-to-end tests of
+#                     `scripts/dev.sh test`)
 #            fuzz     clang 14 and its runtimes: libFuzzer targets, the stress matrix
 #            bench    Embree (the peer of the benchmark)
 #            all      every group above (grade is part of build and libs)
@@ -43,12 +45,13 @@ group_packages() {
             libstb-dev doctest-dev nlohmann-json3-dev libseccomp-dev bubblewrap jq ;;
         gui | gui-test) echo xvfb xauth libgl1-mesa-dri xdotool ;;
         format) echo clang-format ;;
+        test) echo python3 ;;
         fuzz) echo clang libclang-rt-14-dev ;;
         bench) echo libembree-dev ;;
         *) return 1 ;;
     esac
 }
-ALL_GROUPS=(build libs gui format fuzz bench)
+ALL_GROUPS=(build libs gui format test fuzz bench)
 # grade is a subset of build + libs, so `all` need not name it
 
 usage() { sed -n '2,/^[^#]/{/^#/s/^# \{0,1\}//p}' "$0"; }
