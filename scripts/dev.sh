@@ -9,22 +9,28 @@
 #   test               everything CI checks, in build folders of its own: warnings as errors
 #                      (build-ci/), clang-format, an address and undefined-behaviour sanitizer
 #                      build (build-asan/) running the unit tests, a few seconds of each fuzz
-#                      target (build-fuzz/, when clang is installed), scripts/stress-matrix.sh
-#                      (its six configurations, when it exists), then every test in build-ci/
-#                      (GUI tests under Xvfb)
+#                      target (build-fuzz/, when clang is installed), the users' paths end to
+#                      end (tests/e2e/user_paths.sh: a student release and its checks, the
+#                      student's first commands, grade and Run tests in it, grade-class),
+#                      scripts/stress-matrix.sh (its six configurations, when it exists),
+#                      then every test in build-ci/ (GUI tests under Xvfb)
 #   build              configure and build everything in build/ (Release)
 #   grade [ARGS]       grade exercises (scripts/grade.sh [--timeout S] [--points N]
 #                      [--expect full|not-started]); env SUBMISSION=DIR grades a hand-in,
 #                      GRADE_OUT=DIR chooses where the reports go (default build/grade/)
-#   grade-reference    grade the reference solutions (scripts/grade.sh --reference)
+#   grade-reference    grade the reference solutions (scripts/grade.sh --reference) [instructor]
 #   grade-class DIR [-j N] [--out OUT]  grade every hand-in in DIR (scripts/grade-class.sh)
-#   gradescope OUT     make the Gradescope autograder package (scripts/make-gradescope.sh)
-#   release [OUT]      make the student release (scripts/make-student-release.sh)
-#   bench [ARGS]       build with Embree and run build/bench/raylab-bench ARGS
+#   gradescope FILE.zip [--seed N]  make the Gradescope autograder package, with the
+#                      private tests' seed N (scripts/make-gradescope.sh) [instructor]
+#   release [OUT]      make the student release (scripts/make-student-release.sh) [instructor]
+#   bench [ARGS]       build with Embree and run build/bench/raylab-bench ARGS [instructor]
 #   fuzz [SECONDS]     run each fuzz target SECONDS (default 600) in build-fuzz/ (needs clang)
 #   format             apply clang-format to the tracked C++ sources
 #   clean              delete the build folders this script made (it lists them)
 #   help               this text
+#
+# [instructor]: needs the instructor's tree (solutions/); a student release neither lists
+# nor runs these.
 #
 # Each build folder is locked while a command uses it: a second dev.sh on the same folder
 # waits and says so.
@@ -46,7 +52,36 @@ JOBS=$(nproc 2>/dev/null || echo 2)
 # shellcheck source=lib/build.sh
 source "$RAYLAB_ROOT/scripts/lib/build.sh"
 
-usage() { sed -n '2,/^[^#]/{/^#/s/^# \{0,1\}//p}' "$0"; }
+# The header above; in a student release without the [instructor] commands
+usage() {
+    local text
+    text=$(sed -n '2,/^[^#]/{/^#/s/^# \{0,1\}//p}' "$0")
+    if is_instructor_tree; then
+        printf '%s\n' "$text"
+        return
+    fi
+    # A command's entry runs from its line ("  name ...") to the next entry; drop the
+    # entries marked [instructor] and the note about them
+    printf '%s\n' "$text" | awk '
+        function flush() { if (entry !~ /\[instructor\]/) printf "%s", entry; entry = "" }
+        entry != "" && /^    / { entry = entry $0 "\n"; next }
+        { flush() }
+        /^  [a-z]/ { entry = $0 "\n"; next }
+        /^\[instructor\]/ { skip = 1 }
+        skip && /^$/ { skip = 0; next }
+        skip { next }
+        { print }
+        END { flush() }'
+}
+
+# The instructor's tree holds the reference's source; a student release does not
+is_instructor_tree() { [[ -f $RAYLAB_ROOT/solutions/01_pixel_loop.cpp ]]; }
+
+# instructor_only COMMAND: refuse COMMAND in a student release
+instructor_only() {
+    is_instructor_tree ||
+        die "'$1' is an instructor's command: this copy has no solutions/ (a student release)"
+}
 
 # ---- Helpers ---------------------------------------------------------------------------
 
@@ -205,7 +240,7 @@ cmd_fuzz() {
 
 cmd_test() {
     no_args test "$@"
-    install_deps build libs gui format fuzz
+    install_deps build libs gui format test fuzz
     local t0=$SECONDS
 
     # Warnings as errors, GUI included, in a folder of its own (build/ stays lenient)
@@ -234,6 +269,14 @@ cmd_test() {
         fuzz_run 5
     else
         warn "clang++ is missing: the fuzz targets did not run (scripts/install-deps.sh fuzz)"
+    fi
+    # What instructors and students run, end to end: the release and its own checks, the
+    # README's first command in it, grade, the viewer's Run tests, grade-class. The release
+    # writes its golden data with the build above
+    if [[ -f tests/e2e/user_paths.sh ]]; then
+        step "The users' paths end to end (tests/e2e/user_paths.sh, in $CI_DIR/e2e/)"
+        RELEASE_BUILD_DIR=$RAYLAB_ROOT/$CI_DIR bash tests/e2e/user_paths.sh "$RAYLAB_ROOT" \
+            "$RAYLAB_ROOT/$CI_DIR/e2e" || die "tests/e2e/user_paths.sh failed (output above)"
     fi
     if [[ -f scripts/stress-matrix.sh ]]; then
         # All six configurations: g++ and clang++, -O0, -O2 and -O3 -march=native (about 2
@@ -280,7 +323,8 @@ cmd_grade_class() {
 }
 
 cmd_gradescope() {
-    (($# == 1)) || die "gradescope takes one argument, the output file or folder: gradescope OUT"
+    (($# == 1 || $# == 3)) ||
+        die "gradescope takes the zip file to write and an optional seed: gradescope FILE.zip [--seed N]"
     install_deps build libs
     run_script scripts/make-gradescope.sh "$@"
 }
@@ -352,11 +396,11 @@ case $command in
     test) cmd_test "$@" ;;
     build) cmd_build "$@" ;;
     grade) cmd_grade "$@" ;;
-    grade-reference) cmd_grade --reference "$@" ;;
+    grade-reference) instructor_only "$command"; cmd_grade --reference "$@" ;;
     grade-class) cmd_grade_class "$@" ;;
-    gradescope) cmd_gradescope "$@" ;;
-    release) cmd_release "$@" ;;
-    bench) cmd_bench "$@" ;;
+    gradescope) instructor_only "$command"; cmd_gradescope "$@" ;;
+    release) instructor_only "$command"; cmd_release "$@" ;;
+    bench) instructor_only "$command"; cmd_bench "$@" ;;
     fuzz) cmd_fuzz "$@" ;;
     format) cmd_format "$@" ;;
     clean) cmd_clean "$@" ;;

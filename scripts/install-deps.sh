@@ -1,16 +1,22 @@
 #!/usr/bin/env bash
-# Install the Debian 12 packages raylab needs, and only those that are missing.
+# Install the Debian 12 packages raylab needs, and only those that are missing. The group
+# `grade` (what grading needs, nothing graphical) also installs on Ubuntu 22.04, the base
+# image of Gradescope's autograders: its package names are the same there (universe).
 #
 # Usage: scripts/install-deps.sh [--check | --list] [GROUP...]
 #   GROUP    build    compiler and build tools: g++ make cmake ninja-build pkg-config
 #            libs     libraries: GLM, tinyobjloader, stb, doctest, Dear ImGui, GLFW, GL headers,
 #                     nlohmann-json, libseccomp and bubblewrap (the grader's sandbox),
 #                     jq, zip and unzip (class tables, the Gradescope package)
+#            grade    grading only (scripts/grade.sh, the Gradescope package's setup.sh):
+#                     the build tools and the libraries of the graders, bubblewrap, jq
 #            gui      running the GUI tests headless: Xvfb, xauth, Mesa, xdotool (alias gui-test)
 #            format   clang-format (the style check of `scripts/dev.sh test`)
+#            test     python3 (the docs' checks, the class and end-to-end tests of
+#                     `scripts/dev.sh test`)
 #            fuzz     clang 14 and its runtimes: libFuzzer targets, the stress matrix
 #            bench    Embree (the peer of the benchmark)
-#            all      every group above
+#            all      every group above (grade is part of build and libs)
 #            (default: build libs)
 #   --check  only report what is missing; exit 1 if anything is
 #   --list   print the packages of the groups, one a line, and exit
@@ -34,14 +40,19 @@ group_packages() {
             libglfw3-dev libgl-dev libopengl-dev nlohmann-json3-dev libseccomp-dev bubblewrap \
             jq zip unzip ;;
         # xauth is only recommended by xvfb, but xvfb-run needs it; Mesa's llvmpipe renders GL
+        # The graders build without the viewer (RAYLAB_WITH_GUI=OFF): no GL, GLFW or ImGui
+        grade) echo g++ make cmake ninja-build pkg-config libglm-dev libtinyobjloader-dev \
+            libstb-dev doctest-dev nlohmann-json3-dev libseccomp-dev bubblewrap jq ;;
         gui | gui-test) echo xvfb xauth libgl1-mesa-dri xdotool ;;
         format) echo clang-format ;;
+        test) echo python3 ;;
         fuzz) echo clang libclang-rt-14-dev ;;
         bench) echo libembree-dev ;;
         *) return 1 ;;
     esac
 }
-ALL_GROUPS=(build libs gui format fuzz bench)
+ALL_GROUPS=(build libs gui format test fuzz bench)
+# grade is a subset of build + libs, so `all` need not name it
 
 usage() { sed -n '2,/^[^#]/{/^#/s/^# \{0,1\}//p}' "$0"; }
 
@@ -76,7 +87,8 @@ fi
 
 # Not Debian: say what to install and let CMake report what is really missing
 if ! have dpkg-query || ! have apt-get; then
-    warn "no dpkg/apt-get here: this script knows Debian 12 only. Install the equivalents of:"
+    warn "no dpkg/apt-get here: this script knows Debian 12 (and Ubuntu 22.04 for the group" \
+        "grade) only. Install the equivalents of:"
     note "${packages[*]}"
     [[ $mode == check ]] && exit 1
     exit 0
@@ -120,6 +132,18 @@ t0=$SECONDS
 apt=(env DEBIAN_FRONTEND=noninteractive apt-get -o DPkg::Lock::Timeout=600)
 "${as_root[@]}" "${apt[@]}" -o Acquire::Languages=none -q update ||
     die "apt-get update failed (as ${as_root[*]:-root}); see above"
+# A package the sources do not offer: name it (Ubuntu keeps several in universe)
+absent=()
+for p in "${missing[@]}"; do
+    candidate=$(apt-cache policy "$p" 2>/dev/null | sed -n 's/^ *Candidate: //p')
+    [[ -n $candidate && $candidate != '(none)' ]] || absent+=("$p")
+done
+if ((${#absent[@]})); then
+    hint=''
+    grep -qi '^ID=ubuntu' /etc/os-release 2>/dev/null &&
+        hint=" (on Ubuntu they are in the universe component: add-apt-repository universe)"
+    die "apt's package sources offer no ${absent[*]}$hint"
+fi
 # dpkg's per-package lines go to a log; apt's summary, lock waits and errors stay visible
 log=$(mktemp "${TMPDIR:-/tmp}/raylab-apt.XXXXXX")
 set +e

@@ -1,16 +1,24 @@
 #!/usr/bin/env bash
-# Builds a Gradescope autograder package (issue 7 item 7): OUT/autograder.zip with
-#   setup.sh        run once when Gradescope builds the image: installs the Debian packages
-#                   (scripts/install-deps.sh build libs) and builds the grader once, so each
-#                   submission only compiles the student's files
-#   run_autograder  grades /autograder/submission with scripts/grade.sh and writes
-#                   /autograder/results/results.json (Gradescope's format: score, output, tests)
-#   raylab/         this checkout's tracked files (with solutions/: the package is for the
+# Builds the Gradescope autograder package: one zip file holding
+#   setup.sh        run once, as root, when Gradescope builds the autograder's image (Ubuntu
+#                   22.04, the default base image; Debian 12 works too): installs what grading
+#                   needs (scripts/install-deps.sh grade: no graphical packages), moves the
+#                   private seed out of the source folder into a folder only root can open,
+#                   and builds the graders once, so that each submission only compiles the
+#                   student's files
+#   run_autograder  grades /autograder/submission with scripts/grade.sh --private (the hidden
+#                   tests, with the seed) and writes /autograder/results/results.json
+#                   (Gradescope's format: score, output, tests); whatever happens, it writes one
+#   raylab/         this checkout's files (with solutions/: the package is for the
 #                   instructor's Gradescope assignment only, never for students)
+#   private/seed    the private tests' seed
 #
-# Usage: scripts/make-gradescope.sh OUT   (also: ./scripts/dev.sh gradescope OUT)
-# Upload OUT/autograder.zip as the assignment's autograder; students hand in the
-# NN_name.cpp files (folders are fine: the shallowest copy of each file is graded).
+# Usage: scripts/make-gradescope.sh FILE.zip [--seed N]   (also: ./scripts/dev.sh gradescope)
+#   --seed N   the seed of the private tests (a number, at most 18 digits); without it a
+#              random one is drawn and printed. The same seed with scripts/grade.sh
+#              --private DIR (DIR/seed holding it) gives the same grades on your machine.
+# Upload FILE.zip as the assignment's autograder; students hand in the NN_name.cpp files
+# (folders are fine: the shallowest copy of each file is graded).
 #
 # Both scripts take their root from AUTOGRADER_ROOT (default /autograder), so a test can run
 # them in a scratch folder laid out like /autograder (tests/class/check_gradescope.sh);
@@ -19,52 +27,85 @@ set -euo pipefail
 # shellcheck source=lib/common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
 
-[[ $# -eq 1 && $1 != -* ]] || {
-    sed -n '2,/^[^#]/{/^#/s/^# \{0,1\}//p}' "$0" >&2
-    die "usage: scripts/make-gradescope.sh OUT"
-}
-have zip || die "zip is missing: apt-get install zip"
-mkdir -p "$1"
-out=$(cd "$1" && pwd)
+usage() { sed -n '2,/^[^#]/{/^#/s/^# \{0,1\}//p}' "$0"; }
+out='' seed=''
+while (($#)); do
+    case $1 in
+        -h | --help) usage; exit 0 ;;
+        --seed) (($# >= 2)) || die "--seed needs a number"; seed=$2; shift ;;
+        --seed=*) seed=${1#*=} ;;
+        -*) usage >&2; die "unknown option '$1'" ;;
+        *) [[ -z $out ]] || die "one output file only, got '$out' and '$1'"; out=$1 ;;
+    esac
+    shift
+done
+[[ -n $out ]] || { usage >&2; die "usage: scripts/make-gradescope.sh FILE.zip [--seed N]"; }
+[[ $out == *.zip ]] || die "the package is a zip file: name it FILE.zip, not '$out'"
+[[ ! -d $out ]] || die "$out is a folder: name the zip file to write"
+if [[ -z $seed ]]; then
+    seed=$(od -An -N6 -tu8 /dev/urandom | tr -d ' ')
+    random_seed=1
+else
+    [[ $seed =~ ^[0-9]{1,18}$ ]] || die "--seed takes a number of at most 18 digits, not '$seed'"
+    random_seed=0
+fi
+have zip || die "zip is missing: scripts/install-deps.sh libs"
+[[ -f $RAYLAB_ROOT/solutions/01_pixel_loop.cpp ]] ||
+    die "this tree has no solutions/: the package can only be made from the instructor's tree"
+dir=$(dirname "$out")
+mkdir -p "$dir"
+file=$(cd "$dir" && pwd)/$(basename "$out")
 stage=$(mktemp -d)
 trap 'rm -rf "$stage"' EXIT
 
 step "Copying the tracked files of $RAYLAB_ROOT"
 mkdir -p "$stage/raylab"
-git -C "$RAYLAB_ROOT" ls-files -z --cached --others --exclude-standard |
-    (cd "$RAYLAB_ROOT" && xargs -0 tar -cf - --no-recursion --ignore-failed-read) |
-    tar -xf - -C "$stage/raylab"
+if git -C "$RAYLAB_ROOT" rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+    git -C "$RAYLAB_ROOT" ls-files -z --cached --others --exclude-standard |
+        (cd "$RAYLAB_ROOT" && xargs -0 tar -cf - --no-recursion --ignore-failed-read) |
+        tar -xf - -C "$stage/raylab"
+else
+    (cd "$RAYLAB_ROOT" && find . -path './build*' -prune -o -type f -print0 |
+        xargs -0 tar -cf - --no-recursion) | tar -xf - -C "$stage/raylab"
+fi
 [[ -f $stage/raylab/scripts/grade.sh ]] || die "the copy has no scripts/grade.sh"
+mkdir -p "$stage/private"
+printf '%s\n' "$seed" >"$stage/private/seed"
 
-cat >"$stage/setup.sh" <<'EOF'
+cat >"$stage/setup.sh" <<'SH'
 #!/usr/bin/env bash
-# Gradescope runs this once, as root, when it builds the autograder image.
+# Gradescope runs this once, as root, when it builds the autograder's image.
 set -euo pipefail
 ROOT=${AUTOGRADER_ROOT:-/autograder}
 SRC=$ROOT/source/raylab
-if [[ ${RAYLAB_SKIP_DEPS:-0} != 1 ]]; then
-    export DEBIAN_FRONTEND=noninteractive
-    apt-get update
-    apt-get install -y --no-install-recommends jq
-    bash "$SRC/scripts/install-deps.sh" build libs
+# The private seed leaves source/ for a folder only its owner (root) can open: the
+# student's compiler and program never run as root
+install -d -m 700 "$ROOT/private"
+if [[ -f $ROOT/source/private/seed ]]; then
+    mv "$ROOT/source/private/seed" "$ROOT/private/seed"
+    rmdir "$ROOT/source/private"
 fi
-# Build the grader once on the untouched stubs: each submission then compiles its own files
+chmod 600 "$ROOT/private/seed"
+if [[ ${RAYLAB_SKIP_DEPS:-0} != 1 ]]; then
+    bash "$SRC/scripts/install-deps.sh" grade
+fi
+# Build the graders once on the untouched stubs: each submission then compiles its own files
 mkdir -p "$ROOT/stubs"
 cp "$SRC"/exercises/[0-9][0-9]_*.cpp "$ROOT/stubs/"
 SUBMISSION=$ROOT/stubs GRADE_OUT=$ROOT/setup-grade GRADE_BUILD_DIR=$ROOT/build-grade \
-    bash "$SRC/scripts/grade.sh"
-EOF
+    bash "$SRC/scripts/grade.sh" --expect not-started
+SH
 
-cat >"$stage/run_autograder" <<'EOF'
+cat >"$stage/run_autograder" <<'SH'
 #!/usr/bin/env bash
-# Gradescope runs this for each submission: grades ROOT/submission, writes
-# ROOT/results/results.json. Whatever happens, results.json is written.
+# Gradescope runs this for each submission: grades ROOT/submission with the private tests,
+# writes ROOT/results/results.json. Whatever happens, results.json is written.
 set -uo pipefail
 ROOT=${AUTOGRADER_ROOT:-/autograder}
 SRC=$ROOT/source/raylab
 mkdir -p "$ROOT/results"
 SUBMISSION=$ROOT/submission GRADE_OUT=$ROOT/results/grade GRADE_BUILD_DIR=$ROOT/build-grade \
-    bash "$SRC/scripts/grade.sh" >"$ROOT/results/grade.log" 2>&1
+    bash "$SRC/scripts/grade.sh" --private "$ROOT/private" </dev/null >"$ROOT/results/grade.log" 2>&1
 status=$?
 if ((status == 0)) && [[ -s $ROOT/results/grade/results.json ]]; then
     cp "$ROOT/results/grade/results.json" "$ROOT/results/results.json"
@@ -77,10 +118,17 @@ else
             >"$ROOT/results/results.json"
 fi
 cat "$ROOT/results/grade/summary.txt" 2>/dev/null || tail -n 40 "$ROOT/results/grade.log"
-EOF
+SH
 chmod +x "$stage/setup.sh" "$stage/run_autograder"
 
-step "Writing $out/autograder.zip"
-rm -f "$out/autograder.zip"
-(cd "$stage" && zip -qr "$out/autograder.zip" setup.sh run_autograder raylab)
-note "$(du -h "$out/autograder.zip" | cut -f1) $out/autograder.zip: upload it as the autograder"
+step "Writing $file"
+(cd "$stage" && zip -qr "$stage/package.zip" setup.sh run_autograder raylab private)
+mv "$stage/package.zip" "$file"
+note "$(du -h "$file" | cut -f1) $file: upload it as the assignment's autograder"
+if ((random_seed)); then
+    note "private seed $seed (drawn now; keep it to grade the same private tests elsewhere:" \
+        "scripts/grade.sh --private DIR with DIR/seed holding it, or make the next package" \
+        "with --seed $seed)"
+else
+    note "private seed: the one given (--seed)"
+fi

@@ -6,9 +6,10 @@
 #   is an earlier release (it holds .raylab-release).
 #
 # The release is this tree without what students must not have or cannot build: solutions/
-# (the reference), bench/ and tests/stress/ (they measure the reference), the instructor
-# guide and the benchmark notes (with the sampling benchmark's plots and CSV). In their
-# place it gets:
+# (the reference), bench/ and tests/stress/ (they measure the reference), tests/e2e/ (it
+# makes a release), the instructor guide and the benchmark notes (with the sampling
+# benchmark's plots and CSV); a link to one of those in a page the release keeps becomes
+# plain text. In their place it gets:
 #   README.md             the students' README (scripts/release/README.md)
 #   reference/libraylab_reference.a
 #                         the reference compiled (no source): stubs fall back to it, the
@@ -27,7 +28,11 @@
 # scripts/grade.sh, which must find every module not started.
 #
 # Environment: RELEASE_BUILD_DIR=DIR, the build of this tree that writes the golden data
-# (default build-student-release/); RELEASE_KEEP_CHECK=1 keeps the scratch check folder.
+# (default build-student-release/; an existing Ninja build of this tree is used with its
+# options, so CI's own build serves); RELEASE_KEEP_CHECK=1 keeps the scratch check folder;
+# RELEASE_CHECK_DIR=DIR makes the checks in DIR (new or empty) and keeps it, so that a test
+# can use the release's builds (DIR/build, DIR/grade-build); CMAKE_ARGS="..." adds options to
+# every configure (as in scripts/dev.sh).
 set -euo pipefail
 # shellcheck source=lib/common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
@@ -44,6 +49,8 @@ mapfile -t MODULES < <(sed -n 's/^RAYLAB_MODULE([a-z_0-9]*, "\([0-9][0-9]_[a-z_0
     "$RAYLAB_ROOT/framework/include/raylab/modules.def")
 ((${#MODULES[@]})) || die "no modules in framework/include/raylab/modules.def"
 t0=$SECONDS
+extra=()
+if [[ -n ${CMAKE_ARGS:-} ]]; then read -r -a extra <<<"$CMAKE_ARGS"; fi
 
 have cmake || die "cmake is missing: scripts/install-deps.sh build"
 have ninja || die "ninja is missing: scripts/install-deps.sh build"
@@ -74,8 +81,9 @@ done
 # What never goes to students
 excluded() {
     case $1 in
-        solutions/* | bench/* | tests/stress/* | docs/instructor-guide.md | docs/benchmarks.md | \
-            docs/sampling-benchmarks.md | docs/images/sampling-benchmark* | docs/data/* | \
+        solutions/* | bench/* | tests/stress/* | tests/e2e/* | docs/instructor-guide.md | \
+            docs/benchmarks.md | docs/sampling-benchmarks.md | docs/images/sampling-benchmark* | \
+            docs/data/* | \
             tests/data/golden/* | build*/* | scripts/release/* | README.md) return 0 ;;
     esac
     return 1
@@ -106,13 +114,43 @@ printf 'raylab student release of %s, made %s\n' "$commit" "$(date -u +%Y-%m-%dT
     >"$OUT/.raylab-release"
 note "$count files; no solutions/, bench/, tests/stress/ or instructor guide"
 
+# A page copied to the release may link a page that stays behind (architecture.md links
+# benchmarks.md): such a link becomes its plain text, so that both trees' links resolve.
+# A link that resolves in neither tree is left for Check 0 to report
+step "Unlinking the pages the release leaves out"
+(cd "$OUT" && find . -name '*.md' -print0 | RAYLAB_ROOT=$RAYLAB_ROOT perl -0 -ne '
+    use File::Basename; use File::Spec;
+    chomp(my $md = $_); $md =~ s{^\./}{};
+    open(my $in, "<", $md) or die "$md: $!"; local $/; my $text = <$in>; close $in;
+    my $dir = dirname($md); my $n = 0;
+    $text =~ s{(!?)\[([^\[\]\n]*)\]\(([^)#\s]+)(#[^)]*)?\)}{
+        my ($img, $label, $target, $anchor) = ($1, $2, $3, $4 // "");
+        my $path = File::Spec->canonpath("$dir/$target"); 1 while $path =~ s{(^|/)(?!\.\./)[^/]+/\.\.(/|$)}{$1};
+        if ($target !~ /^[a-z]+:/ && !-e $path && -e "$ENV{RAYLAB_ROOT}/$path") {
+            $n++; print "    $md: $target (not in the release): now plain text\n"; $label;
+        } else { "$img\[$label\]($target$anchor)" }
+    }ge;
+    if ($n) { open(my $out, ">", $md) or die "$md: $!"; print $out $text; close $out; }
+') || die "unlinking the pages left out failed"
+
 # ---- Golden data, written by the reference -----------------------------------------------
 
 step "Writing the golden data with the reference (build in $BUILD/)"
 mkdir -p "$BUILD"
-cmake -S "$RAYLAB_ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WITH_GUI=OFF \
-    -DRAYLAB_EXERCISES_DIR="$RAYLAB_ROOT/exercises" >"$BUILD/release-configure.log" 2>&1 ||
-    die "configuring $BUILD/ failed: see $BUILD/release-configure.log"
+if [[ -f $BUILD/CMakeCache.txt ]]; then
+    # An existing Ninja build of this tree (CI passes its own) keeps its options; it must
+    # build the stubs of exercises/
+    cached() { sed -n "s/^$1:[A-Z]*=//p" "$BUILD/CMakeCache.txt"; }
+    [[ $(realpath -m "$(cached CMAKE_HOME_DIRECTORY)") == "$(realpath "$RAYLAB_ROOT")" &&
+        $(realpath -m "$(cached RAYLAB_EXERCISES_DIR)") == "$(realpath "$RAYLAB_ROOT/exercises")" &&
+        -f $BUILD/build.ninja ]] ||
+        die "RELEASE_BUILD_DIR=$BUILD is not a Ninja build of this tree's exercises/"
+else
+    cmake -S "$RAYLAB_ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WITH_GUI=OFF \
+        -DRAYLAB_EXERCISES_DIR="$RAYLAB_ROOT/exercises" "${extra[@]}" \
+        >"$BUILD/release-configure.log" 2>&1 ||
+        die "configuring $BUILD/ failed: see $BUILD/release-configure.log"
+fi
 ninja -C "$BUILD" raylab-grading-tests raylab-worker raylab-worker-reference \
     >"$BUILD/release-build.log" 2>&1 ||
     die "building the graders failed: see $BUILD/release-build.log"
@@ -150,9 +188,15 @@ src=$(find "$OUT/reference" -type f ! -name libraylab_reference.a)
 leaks=$(grep -rl 'raylab::reference::[a-z_]*(' "$OUT/exercises" "$OUT/tests/grading" || true)
 [[ -z $leaks ]] || die "these release files call the reference: $leaks"
 
-CHECK=$(mktemp -d "${TMPDIR:-/tmp}/raylab-release-check.XXXXXX")
-cleanup() { [[ ${RELEASE_KEEP_CHECK:-} == 1 ]] || rm -rf "$CHECK"; }
-trap cleanup EXIT
+if [[ -n ${RELEASE_CHECK_DIR:-} ]]; then
+    CHECK=$(absolute "$RELEASE_CHECK_DIR")
+    mkdir -p "$CHECK"
+    [[ -z $(ls -A "$CHECK") ]] || die "RELEASE_CHECK_DIR=$CHECK is not empty"
+else
+    CHECK=$(mktemp -d "${TMPDIR:-/tmp}/raylab-release-check.XXXXXX")
+    cleanup() { [[ ${RELEASE_KEEP_CHECK:-} == 1 ]] || rm -rf "$CHECK"; }
+    trap cleanup EXIT
+fi
 
 step "Check 0: links and stubs"
 bash "$RAYLAB_ROOT/scripts/check-links.sh" "$OUT" | sed 's/^/    /' ||
@@ -166,11 +210,14 @@ for f in "$OUT"/README.md "$OUT"/docs/handouts/*.md; do
         die "$f mentions what the release does not hold (above)"
     fi
 done
-note "links resolve, every stub lists its TODO(student) steps"
+listed=$(bash "$OUT/scripts/dev.sh" help | grep -E '^  (bench|grade-reference|gradescope|release)( |$)') &&
+    die "the release's dev.sh help lists instructor commands: $listed"
+note "links resolve, every stub lists its TODO(student) steps, dev.sh help lists no" \
+    "instructor command"
 
 step "Check 1: the release builds (warnings as errors) in $CHECK/build"
 cmake -S "$OUT" -B "$CHECK/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WERROR=ON \
-    >"$CHECK/configure.log" 2>&1 || {
+    "${extra[@]}" >"$CHECK/configure.log" 2>&1 || {
     cat "$CHECK/configure.log" >&2
     die "the release does not configure"
 }

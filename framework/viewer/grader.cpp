@@ -77,8 +77,17 @@ ChildResult run_child(const std::vector<std::string>& argv,
         args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
     std::vector<char*> envp;
-    for (char** e = environ; *e; ++e)
-        envp.push_back(*e);
+    for (char** e = environ; *e; ++e) {
+        // A variable set in env replaces the inherited one (getenv takes the first)
+        const std::string_view inherited(*e);
+        const bool replaced =
+            std::any_of(env.begin(), env.end(), [&](const std::string& x) {
+                const size_t eq = x.find('=');
+                return eq != std::string::npos &&
+                       inherited.substr(0, eq + 1) == x.substr(0, eq + 1);
+            });
+        if (!replaced) envp.push_back(*e);
+    }
     for (const std::string& e : env)
         envp.push_back(const_cast<char*>(e.c_str()));
     envp.push_back(nullptr);
@@ -154,35 +163,28 @@ ModuleGrade grade_module(const std::string& binary, const std::string& id,
     return grade;
 }
 
-ModuleGrade grade_with_runner(const std::string& runner, const std::string& tests,
-                              const std::string& id, double timeout_seconds,
-                              const std::atomic<bool>* cancel) {
-    ModuleGrade grade;
+namespace {
+
+// A fresh temporary folder, or "" when none can be made
+std::string make_temp_dir() {
     std::string dir = (std::filesystem::temp_directory_path() / "raylab-viewer-XXXXXX");
-    if (!mkdtemp(dir.data())) {
-        grade.status = ModuleGrade::Status::error;
-        grade.summary = "cannot create a temporary folder";
-        return grade;
-    }
-    const ChildResult child =
-        run_child({runner, "--tests", tests, "--out", dir, "--only", id, "--timeout",
-                   std::to_string(int(timeout_seconds / 2))},
-                  {}, timeout_seconds, cancel);
-    grade.output = child.output;
-    nlohmann::json modules;
+    return mkdtemp(dir.data()) ? dir : std::string();
+}
+
+// The runner's cases.json in dir (an array of modules), or null
+nlohmann::json read_cases(const std::string& dir) {
     try {
         std::ifstream in(dir + "/cases.json");
-        modules = nlohmann::json::parse(in);
+        nlohmann::json modules = nlohmann::json::parse(in);
+        if (modules.is_array()) return modules;
     } catch (const std::exception&) {
     }
-    std::filesystem::remove_all(dir);
-    if (!child.started || child.timed_out || !modules.is_array() || modules.empty()) {
-        grade.status =
-            child.timed_out ? ModuleGrade::Status::crashed : ModuleGrade::Status::error;
-        grade.summary = child.timed_out ? "timed out" : "the runner failed";
-        return grade;
-    }
-    const nlohmann::json& m = modules[0];
+    return nullptr;
+}
+
+// One module of the runner's cases.json, in the words the runner used
+ModuleGrade grade_from_cases(const nlohmann::json& m) {
+    ModuleGrade grade;
     for (const nlohmann::json& c : m.value("cases", nlohmann::json::array()))
         grade.cases.push_back(
             {c.value("name", ""), c.value("status", ""), c.value("message", "")});
@@ -214,6 +216,120 @@ ModuleGrade grade_with_runner(const std::string& runner, const std::string& test
     return grade;
 }
 
+// The last non-empty line of text
+std::string last_line(const std::string& text) {
+    size_t end = text.find_last_not_of(" \n\r\t");
+    if (end == std::string::npos) return "";
+    const size_t start = text.rfind('\n', end);
+    return text.substr(start == std::string::npos ? 0 : start + 1,
+                       end + 1 - (start == std::string::npos ? 0 : start + 1));
+}
+
+// The value of KEY in a CMakeCache.txt ("KEY:TYPE=value"), or ""
+std::string cache_value(const std::string& cache_file, const std::string& key) {
+    std::ifstream in(cache_file);
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.rfind(key + ":", 0) != 0) continue;
+        const size_t eq = line.find('=');
+        if (eq != std::string::npos) return line.substr(eq + 1);
+    }
+    return "";
+}
+
+bool is_grade_script(const std::string& path) {
+    const std::string name = "/scripts/grade.sh";
+    return path.size() >= name.size() &&
+           path.compare(path.size() - name.size(), name.size(), name) == 0;
+}
+
+// The build folder of a viewer at <build>/framework/viewer/raylab
+std::string build_dir_of(const std::string& viewer_path) {
+    const size_t slash = viewer_path.rfind('/');
+    const std::string dir =
+        slash == std::string::npos ? "." : viewer_path.substr(0, slash);
+    return dir + "/../..";
+}
+
+}  // namespace
+
+ModuleGrade grade_with_runner(const std::string& runner, const std::string& tests,
+                              const std::string& id, double timeout_seconds,
+                              const std::atomic<bool>* cancel) {
+    ModuleGrade grade;
+    const std::string dir = make_temp_dir();
+    if (dir.empty()) {
+        grade.status = ModuleGrade::Status::error;
+        grade.summary = "cannot create a temporary folder";
+        return grade;
+    }
+    const ChildResult child =
+        run_child({runner, "--tests", tests, "--out", dir, "--only", id, "--timeout",
+                   std::to_string(int(timeout_seconds / 2))},
+                  {}, timeout_seconds, cancel);
+    const nlohmann::json modules = read_cases(dir);
+    std::filesystem::remove_all(dir);
+    if (!child.started || child.timed_out || modules.is_null() || modules.empty()) {
+        grade.output = child.output;
+        grade.status =
+            child.timed_out ? ModuleGrade::Status::crashed : ModuleGrade::Status::error;
+        grade.summary = child.timed_out ? "timed out" : "the runner failed";
+        return grade;
+    }
+    return grade_from_cases(modules[0]);
+}
+
+std::array<ModuleGrade, kModuleCount> grade_with_script(const std::string& script,
+                                                        const std::string& exercises,
+                                                        double timeout_seconds,
+                                                        const std::atomic<bool>* cancel) {
+    std::array<ModuleGrade, kModuleCount> grades;
+    const auto fail_all = [&](const std::string& summary, const std::string& output) {
+        for (ModuleGrade& g : grades) {
+            g = ModuleGrade{};
+            g.status = ModuleGrade::Status::error;
+            g.summary = summary;
+            g.output = output;
+        }
+        return grades;
+    };
+    const std::string dir = make_temp_dir();
+    if (dir.empty()) return fail_all("cannot create a temporary folder", "");
+    // The hand-in is the exercises this viewer was built with: exercises/ beside the
+    // script, as `./scripts/dev.sh grade` (SUBMISSION empty), or another folder; the
+    // reports go to dir
+    std::string submission;
+    if (!exercises.empty()) {
+        std::error_code ec;
+        const auto root = std::filesystem::path(script).parent_path().parent_path();
+        const auto own = std::filesystem::weakly_canonical(root / "exercises", ec);
+        if (std::filesystem::weakly_canonical(exercises, ec) != own)
+            submission = exercises;
+    }
+    const ChildResult child =
+        run_child({"/bin/bash", script}, {"GRADE_OUT=" + dir, "SUBMISSION=" + submission},
+                  timeout_seconds, cancel);
+    const nlohmann::json modules = read_cases(dir);
+    std::filesystem::remove_all(dir);
+    if (!child.started || child.timed_out || child.exit_code != 0 || modules.is_null()) {
+        const std::string why =
+            child.timed_out
+                ? "timed out after " + std::to_string(int(timeout_seconds)) + " s"
+                : last_line(child.output);
+        return fail_all(
+            "grading failed: " + why + " (./scripts/dev.sh grade shows the whole output)",
+            child.output);
+    }
+    for (const nlohmann::json& m : modules) {
+        const std::string id = m.value("id", "");
+        for (const ModuleInfo& info : module_infos()) {
+            if (id == info.id)
+                grades[static_cast<int>(info.module)] = grade_from_cases(m);
+        }
+    }
+    return grades;
+}
+
 std::string find_runner(const std::string& grading_binary) {
     const size_t slash = grading_binary.rfind('/');
     const std::string path =
@@ -223,14 +339,27 @@ std::string find_runner(const std::string& grading_binary) {
     return access(path.c_str(), X_OK) == 0 ? path : std::string();
 }
 
+std::string find_grade_script(const std::string& viewer_path) {
+    const std::string root = cache_value(build_dir_of(viewer_path) + "/CMakeCache.txt",
+                                         "CMAKE_HOME_DIRECTORY");
+    if (root.empty()) return "";
+    const std::string script = root + "/scripts/grade.sh";
+    return access(script.c_str(), R_OK) == 0 ? script : std::string();
+}
+
+std::string find_exercises_dir(const std::string& viewer_path) {
+    return cache_value(build_dir_of(viewer_path) + "/CMakeCache.txt",
+                       "RAYLAB_EXERCISES_DIR");
+}
+
 std::string find_grading_binary(const std::string& viewer_path) {
     if (const char* env = std::getenv("RAYLAB_GRADING_TESTS"); env && *env) {
         return access(env, X_OK) == 0 ? std::string(env) : std::string();
     }
-    const size_t slash = viewer_path.rfind('/');
-    const std::string dir =
-        slash == std::string::npos ? "." : viewer_path.substr(0, slash);
-    const std::string path = dir + "/../../tests/grading/raylab-grading-tests";
+    if (std::string script = find_grade_script(viewer_path); !script.empty())
+        return script;
+    const std::string path =
+        build_dir_of(viewer_path) + "/tests/grading/raylab-grading-tests";
     return access(path.c_str(), X_OK) == 0 ? path : std::string();
 }
 
@@ -239,7 +368,8 @@ GradingRun::~GradingRun() {
     if (thread_.joinable()) thread_.join();
 }
 
-void GradingRun::start(const std::string& binary, double timeout_seconds) {
+void GradingRun::start(const std::string& binary, double timeout_seconds,
+                       const std::string& exercises) {
     {
         std::lock_guard<std::mutex> lock(mutex_);
         if (running_) return;
@@ -251,6 +381,31 @@ void GradingRun::start(const std::string& binary, double timeout_seconds) {
         }
     }
     if (thread_.joinable()) thread_.join();
+    if (is_grade_script(binary)) {
+        // One run of scripts/grade.sh grades every module, as `grade` does; the first run
+        // also builds the graders
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            for (ModuleGrade& g : grades_)
+                g.summary = "running (scripts/grade.sh)";
+        }
+        std::string folder = exercises;
+        if (folder.empty()) {  // the exercises of the running viewer's build
+            std::error_code ec;
+            folder =
+                find_exercises_dir(std::filesystem::read_symlink("/proc/self/exe", ec));
+        }
+        thread_ = std::thread([this, binary, folder] {
+            auto grades = grade_with_script(binary, folder, kScriptTimeout, &cancel_);
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                grades_ = std::move(grades);
+                running_ = false;
+            }
+            wake_();
+        });
+        return;
+    }
     thread_ = std::thread([this, binary, timeout_seconds] {
         for (const ModuleInfo& info : module_infos()) {
             if (cancel_) break;

@@ -1,11 +1,13 @@
 // viewer/grader.h: runs the graders of each module in a child process.
 //
-// The panel's "Run tests" runs the command line's runner, raylab-grade --only NN_name
-// (next to raylab-grading-tests), so the viewer and scripts/grade.sh grade alike and say
-// the same words ("not started", "time limit", ...); it reads the runner's cases.json.
-// Without the runner it falls back to raylab-grading-tests --test-suite=NN_name and
-// doctest's summary line. Child processes keep a crashing or hanging module from taking
-// the viewer down.
+// The panel's "Run tests" runs scripts/grade.sh of the source tree the viewer was built
+// from, on the exercises it was built with: the same command as `./scripts/dev.sh grade`,
+// so the same staging, sandbox, table and words, and it builds the graders when they are
+// not built yet. It reads the runner's cases.json. With $RAYLAB_GRADING_TESTS, or without
+// the source tree, it runs the build's own runner, raylab-grade --only NN_name (next to
+// raylab-grading-tests), or else raylab-grading-tests --test-suite=NN_name and doctest's
+// summary line. Child processes keep a crashing or hanging module from taking the viewer
+// down.
 #pragma once
 
 #include <array>
@@ -86,11 +88,28 @@ ModuleGrade grade_with_runner(const std::string& runner, const std::string& test
                               const std::string& id, double timeout_seconds,
                               const std::atomic<bool>* cancel = nullptr);
 
+/// Grades every module with scripts/grade.sh (as `./scripts/dev.sh grade`), the hand-in
+/// being the folder exercises, in a child process; reads the runner's cases.json. When
+/// the script fails, every module says so with its last line.
+std::array<ModuleGrade, kModuleCount> grade_with_script(
+    const std::string& script, const std::string& exercises, double timeout_seconds,
+    const std::atomic<bool>* cancel = nullptr);
+
 /// The runner raylab-grade beside the grading binary, or "" when missing.
 std::string find_runner(const std::string& grading_binary);
 
-/// The grading binary: $RAYLAB_GRADING_TESTS when set, else
-/// <viewer's directory>/../../tests/grading/raylab-grading-tests. Empty when missing.
+/// scripts/grade.sh of the source tree of the build holding the viewer at viewer_path
+/// (<build>/framework/viewer/raylab; the tree is CMakeCache.txt's CMAKE_HOME_DIRECTORY),
+/// or "" when there is none.
+std::string find_grade_script(const std::string& viewer_path);
+
+/// The exercises the viewer at viewer_path was built with (RAYLAB_EXERCISES_DIR of its
+/// build), or "".
+std::string find_exercises_dir(const std::string& viewer_path);
+
+/// What "Run tests" runs: $RAYLAB_GRADING_TESTS when set (a grading binary), else the
+/// source tree's scripts/grade.sh (find_grade_script), else the build's own
+/// tests/grading/raylab-grading-tests. Empty when none is there.
 std::string find_grading_binary(const std::string& viewer_path);
 
 /// Grades every module in a background thread; the panel reads snapshots.
@@ -101,8 +120,13 @@ class GradingRun {
     GradingRun(const GradingRun&) = delete;
     GradingRun& operator=(const GradingRun&) = delete;
 
-    /// Starts grading all modules with binary (unless a run is under way).
-    void start(const std::string& binary, double timeout_seconds = 120.0);
+    /// Starts grading all modules with binary (unless a run is under way): a grading
+    /// binary, timeout_seconds per module; or scripts/grade.sh on the folder exercises
+    /// (default: the exercises/ beside the script), kScriptTimeout in all.
+    void start(const std::string& binary, double timeout_seconds = 120.0,
+               const std::string& exercises = "");
+    /// The time limit of a whole scripts/grade.sh run (its first run builds the graders)
+    static constexpr double kScriptTimeout = 3600.0;
     bool running() const;
     std::array<ModuleGrade, kModuleCount> grades() const;
 

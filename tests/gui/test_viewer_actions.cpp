@@ -148,6 +148,55 @@ TEST_SUITE("viewer") {
         unsetenv("RAYLAB_GRADING_TESTS");
     }
 
+    TEST_CASE(
+        "Run tests runs scripts/grade.sh of the viewer's source tree, on its exercises") {
+        // A build folder whose cache names the source tree and the exercises, as CMake's
+        const std::string dir = temp_dir("grade-script");
+        std::filesystem::create_directories(dir + "/src/scripts");
+        std::filesystem::create_directories(dir + "/build/framework/viewer");
+        std::ofstream(dir + "/build/CMakeCache.txt")
+            << "CMAKE_HOME_DIRECTORY:INTERNAL=" << dir << "/src\n"
+            << "RAYLAB_EXERCISES_DIR:PATH=" << dir << "/handin\n";
+        // A stand-in for grade.sh: writes the runner's cases.json into $GRADE_OUT, naming
+        // the hand-in it was given
+        const std::string script = dir + "/src/scripts/grade.sh";
+        std::ofstream(script)
+            << "cat > \"$GRADE_OUT/cases.json\" <<EOF\n"
+               "[{\"id\": \"03_plane\", \"status\": \"passed\", \"passed\": 2, \"cases\":"
+               " [{\"name\": \"a\", \"status\": \"pass\"}, {\"name\": \"b\", \"status\": "
+               "\"pass\"}]},\n"
+               " {\"id\": \"04_sphere\", \"status\": \"not started\", \"passed\": 0, "
+               "\"cases\": [],"
+               " \"first_failure\": \"$SUBMISSION\"}]\n"
+               "EOF\n";
+        const std::string viewer = dir + "/build/framework/viewer/raylab";
+        unsetenv("RAYLAB_GRADING_TESTS");
+        CHECK(find_grade_script(viewer) == script);
+        CHECK(find_grading_binary(viewer) == script);
+        CHECK(find_exercises_dir(viewer) == dir + "/handin");
+        CHECK(find_grade_script("/no/build/framework/viewer/raylab") == "");
+
+        setenv("SUBMISSION", "/inherited/must/not/win", 1);
+        const auto grades = grade_with_script(script, dir + "/handin", 60.0);
+        unsetenv("SUBMISSION");
+        const ModuleGrade& plane = grades[static_cast<int>(Module::plane)];
+        CHECK(plane.status == ModuleGrade::Status::passed);
+        CHECK(plane.summary == "2/2 passed");
+        const ModuleGrade& sphere = grades[static_cast<int>(Module::sphere)];
+        CHECK(sphere.status == ModuleGrade::Status::not_started);
+        CHECK(sphere.output == dir + "/handin");
+        // The exercises beside the script are graded as `grade` does: SUBMISSION empty
+        std::filesystem::create_directories(dir + "/src/exercises");
+        const auto own = grade_with_script(script, dir + "/src/exercises", 60.0);
+        CHECK(own[static_cast<int>(Module::sphere)].output == "");
+
+        // A script that fails: every module says so, with its last line
+        std::ofstream(script) << "echo 'cmake is missing'; exit 1\n";
+        const auto failed = grade_with_script(script, "", 60.0);
+        CHECK(failed[0].status == ModuleGrade::Status::error);
+        CHECK(failed[0].summary.find("cmake is missing") != std::string::npos);
+    }
+
     TEST_CASE("a report's render command reproduces the frame's flags") {
         ReportInput in;
         in.scene_source = "dtu";
