@@ -20,8 +20,8 @@
 #                      GRADE_OUT=DIR chooses where the reports go (default build/grade/)
 #   grade-reference    grade the reference solutions (scripts/grade.sh --reference) [instructor]
 #   grade-class DIR [-j N] [--out OUT]  grade every hand-in in DIR (scripts/grade-class.sh)
-#   gradescope FILE.zip [--seed N]  make the Gradescope autograder package, with the
-#                      private tests' seed N (scripts/make-gradescope.sh) [instructor]
+#   gradescope FILE.zip [--seed N] [--trusted]  make the Gradescope autograder package,
+#                      with the private tests' seed N (scripts/make-gradescope.sh) [instructor]
 #   release [OUT]      make the student release (scripts/make-student-release.sh) [instructor]
 #   bench [ARGS]       build with Embree and run build/bench/raylab-bench ARGS [instructor]
 #   fuzz [SECONDS]     run each fuzz target SECONDS (default 600) in build-fuzz/ (needs clang)
@@ -323,8 +323,8 @@ cmd_grade_class() {
 }
 
 cmd_gradescope() {
-    (($# == 1 || $# == 3)) ||
-        die "gradescope takes the zip file to write and an optional seed: gradescope FILE.zip [--seed N]"
+    (($# >= 1 && $# <= 4)) ||
+        die "gradescope takes the zip file to write and its options: gradescope FILE.zip [--seed N] [--trusted]"
     install_deps build libs
     run_script scripts/make-gradescope.sh "$@"
 }

@@ -13,10 +13,14 @@
 #                   instructor's Gradescope assignment only, never for students)
 #   private/seed    the private tests' seed
 #
-# Usage: scripts/make-gradescope.sh FILE.zip [--seed N]   (also: ./scripts/dev.sh gradescope)
+# Usage: scripts/make-gradescope.sh FILE.zip [--seed N] [--trusted]
+#                                                    (also: ./scripts/dev.sh gradescope)
 #   --seed N   the seed of the private tests (a number, at most 18 digits); without it a
 #              random one is drawn and printed. The same seed with scripts/grade.sh
 #              --private DIR (DIR/seed holding it) gives the same grades on your machine.
+#   --trusted  grade even where Gradescope's container can confine a hand-in's compile
+#              neither with bubblewrap nor with Landlock (scripts/grade.sh --trusted); without
+#              it setup.sh fails there and says so, rather than grade unconfined
 # Upload FILE.zip as the assignment's autograder; students hand in the NN_name.cpp files
 # (folders are fine: the shallowest copy of each file is graded).
 #
@@ -28,10 +32,11 @@ set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
 
 usage() { sed -n '2,/^[^#]/{/^#/s/^# \{0,1\}//p}' "$0"; }
-out='' seed=''
+out='' seed='' trusted=0
 while (($#)); do
     case $1 in
         -h | --help) usage; exit 0 ;;
+        --trusted) trusted=1 ;;
         --seed) (($# >= 2)) || die "--seed needs a number"; seed=$2; shift ;;
         --seed=*) seed=${1#*=} ;;
         -*) usage >&2; die "unknown option '$1'" ;;
@@ -39,7 +44,7 @@ while (($#)); do
     esac
     shift
 done
-[[ -n $out ]] || { usage >&2; die "usage: scripts/make-gradescope.sh FILE.zip [--seed N]"; }
+[[ -n $out ]] || { usage >&2; die "usage: scripts/make-gradescope.sh FILE.zip [--seed N] [--trusted]"; }
 [[ $out == *.zip ]] || die "the package is a zip file: name it FILE.zip, not '$out'"
 [[ ! -d $out ]] || die "$out is a folder: name the zip file to write"
 if [[ -z $seed ]]; then
@@ -71,6 +76,7 @@ fi
 [[ -f $stage/raylab/scripts/grade.sh ]] || die "the copy has no scripts/grade.sh"
 mkdir -p "$stage/private"
 printf '%s\n' "$seed" >"$stage/private/seed"
+((trusted)) && : >"$stage/raylab/.gradescope-trusted"
 
 cat >"$stage/setup.sh" <<'SH'
 #!/usr/bin/env bash
@@ -92,8 +98,18 @@ fi
 # Build the graders once on the untouched stubs: each submission then compiles its own files
 mkdir -p "$ROOT/stubs"
 cp "$SRC"/exercises/[0-9][0-9]_*.cpp "$ROOT/stubs/"
+# The stubs are graded as a submission is, so a container that cannot confine a hand-in's
+# compile fails here, where the instructor reads the log, not at each student's upload
+trusted=()
+[[ -f $SRC/.gradescope-trusted ]] && trusted=(--trusted)
 SUBMISSION=$ROOT/stubs GRADE_OUT=$ROOT/setup-grade GRADE_BUILD_DIR=$ROOT/build-grade \
-    bash "$SRC/scripts/grade.sh" --expect not-started
+    bash "$SRC/scripts/grade.sh" --expect not-started "${trusted[@]}" </dev/null || {
+    echo "setup.sh: grading the untouched stubs failed (above). Where it says that this" \
+        "container can confine a hand-in's compile neither with bubblewrap nor with Landlock," \
+        "make the package again with 'dev.sh gradescope FILE.zip --trusted' to grade there" \
+        "anyway (the instructor guide, 'The Gradescope package')" >&2
+    exit 1
+}
 SH
 
 cat >"$stage/run_autograder" <<'SH'
@@ -104,8 +120,11 @@ set -uo pipefail
 ROOT=${AUTOGRADER_ROOT:-/autograder}
 SRC=$ROOT/source/raylab
 mkdir -p "$ROOT/results"
+trusted=()
+[[ -f $SRC/.gradescope-trusted ]] && trusted=(--trusted)
 SUBMISSION=$ROOT/submission GRADE_OUT=$ROOT/results/grade GRADE_BUILD_DIR=$ROOT/build-grade \
-    bash "$SRC/scripts/grade.sh" --private "$ROOT/private" </dev/null >"$ROOT/results/grade.log" 2>&1
+    bash "$SRC/scripts/grade.sh" --private "$ROOT/private" "${trusted[@]}" </dev/null \
+    >"$ROOT/results/grade.log" 2>&1
 status=$?
 if ((status == 0)) && [[ -s $ROOT/results/grade/results.json ]]; then
     cp "$ROOT/results/grade/results.json" "$ROOT/results/results.json"

@@ -26,6 +26,12 @@ for f in setup.sh run_autograder private/seed raylab/scripts/grade.sh; do
     grep -qx "$f" <<<"$listing" || fail "the zip has no $f at its root"
 done
 
+grep -qx "raylab/.gradescope-trusted" <<<"$listing" && fail "a package made without --trusted is marked trusted"
+RAYLAB_NO_INSTALL=1 "$root/scripts/dev.sh" gradescope "$work/pkg/trusted.zip" --seed 1 --trusted \
+    >"$work/make-trusted.log" 2>&1 || { cat "$work/make-trusted.log"; fail "dev.sh gradescope --trusted failed"; }
+unzip -Z1 "$work/pkg/trusted.zip" | grep -qx "raylab/.gradescope-trusted" ||
+    fail "dev.sh gradescope FILE.zip --trusted does not mark the package trusted"
+
 unzip -q "$work/pkg/autograder.zip" -d "$work/ag/source"
 export AUTOGRADER_ROOT=$work/ag
 bash "$work/ag/source/setup.sh" >"$work/setup.log" 2>&1 || { tail -n 30 "$work/setup.log"; fail "setup.sh failed"; }
@@ -34,6 +40,22 @@ bash "$work/ag/source/setup.sh" >"$work/setup.log" 2>&1 || { tail -n 30 "$work/s
     fail "the seed is open to others: $(stat -c '%a %n' "$work/ag/private" "$work/ag/private/seed")"
 [[ ! -e $work/ag/source/private ]] || fail "source/private/ is still there after setup.sh"
 cp "$work/ag/source/run_autograder" "$work/ag/run_autograder"
+
+# A container where neither bubblewrap nor Landlock can confine a hand-in's compile: setup.sh
+# fails there and names the way out, unless the package was made with --trusted (root only:
+# without namespaces grade.sh runs the student's code as nobody)
+if ((EUID == 0)); then
+    unconfined=(env RAYLAB_SANDBOX=none RAYLAB_LANDLOCK=off RAYLAB_SKIP_DEPS=1)
+    if "${unconfined[@]}" bash "$work/ag/source/setup.sh" >"$work/setup-unconfined.log" 2>&1; then
+        fail "setup.sh passed where no compile can be confined, in a package made without --trusted"
+    fi
+    grep -q "gradescope FILE.zip --trusted" "$work/setup-unconfined.log" ||
+        { tail -n 5 "$work/setup-unconfined.log"; fail "setup.sh's refusal does not name --trusted"; }
+    : >"$work/ag/source/raylab/.gradescope-trusted" # what make-gradescope.sh --trusted leaves
+    "${unconfined[@]}" bash "$work/ag/source/setup.sh" >"$work/setup-trusted.log" 2>&1 ||
+        { tail -n 20 "$work/setup-trusted.log"; fail "setup.sh of a --trusted package failed unconfined"; }
+    rm "$work/ag/source/raylab/.gradescope-trusted"
+fi
 
 # grade NAME: run_autograder on submission/, its results.json kept as NAME.json
 grade() {
