@@ -1,8 +1,9 @@
 // Module 01_pixel_loop: the loop over the pixels (docs/handouts/01_pixel_loop.md).
 //
 // Your work is the two functions below; `grep -n "TODO(student)" exercises/` lists every
-// step. Delete a function's RAYLAB_STUB line when you start on it: the graders and the
-// viewer then treat the module as yours instead of "not started".
+// step. Delete a function's RAYLAB_STUB line when you start on that function: while a
+// module's functions still call it, the viewer runs the reference for that module and the
+// graders report it as not started.
 #include "raylab/contract.h"
 
 namespace raylab::student {

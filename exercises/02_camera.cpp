@@ -1,7 +1,9 @@
 // Module 02_camera: the pinhole camera (docs/handouts/02_camera.md).
 //
 // Your work is the three functions below; `grep -n "TODO(student)" exercises/` lists
-// every step. Delete a function's RAYLAB_STUB line when you start on it.
+// every step. Delete a function's RAYLAB_STUB line when you start on that function: while
+// a module's functions still call it, the viewer runs the reference for that module and
+// the graders report it as not started.
 #include "raylab/contract.h"
 
 namespace raylab::student {

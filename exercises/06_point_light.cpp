@@ -1,7 +1,9 @@
 // Module 06_point_light: light from a point light (docs/handouts/06_point_light.md).
 //
 // Your work is the two functions below; `grep -n "TODO(student)" exercises/` lists every
-// step. Delete a function's RAYLAB_STUB line when you start on it.
+// step. Delete a function's RAYLAB_STUB line when you start on that function: while a
+// module's functions still call it, the viewer runs the reference for that module and the
+// graders report it as not started.
 #include "raylab/contract.h"
 
 namespace raylab::student {

@@ -1,7 +1,9 @@
 // Module 07_lambert: Lambertian shading (docs/handouts/07_lambert.md).
 //
 // Your work is the function below; `grep -n "TODO(student)" exercises/` lists every step.
-// Delete the RAYLAB_STUB line when you start on it.
+// Delete a function's RAYLAB_STUB line when you start on that function: while a module's
+// functions still call it, the viewer runs the reference for that module and the graders
+// report it as not started.
 #include "raylab/contract.h"
 
 namespace raylab::student {

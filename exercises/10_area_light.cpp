@@ -1,7 +1,9 @@
 // Module 10_area_light: area lights and soft shadows (docs/handouts/10_area_light.md).
 //
 // Your work is the functions below; `grep -n "TODO(student)" exercises/` lists every
-// step. Delete the RAYLAB_STUB line of a function when you start on it.
+// step. Delete a function's RAYLAB_STUB line when you start on that function: while a
+// module's functions still call it, the viewer runs the reference for that module and the
+// graders report it as not started.
 #include "raylab/contract.h"
 
 namespace raylab::student {

@@ -11,6 +11,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "raylab/engine.h"
+#include "raylab/refine.h"  // unit_normal
 #include "raylab/scene.h"
 #include "raylab/simd.h"
 

@@ -184,22 +184,31 @@ Vec3 refine_on_triangle(const Vec3& x, const Ray& r, const Vec3& v0, const Vec3&
     return ray_onto_plane(x, r, n, glm::dot(p[k], n));
 }
 
-Vec3 refine_sphere_normal(const Vec3& x, const Vec3& n, const Sphere& sphere) {
-    const DVec3 f = DVec3(x) - DVec3(sphere.c);
-    const double len = glm::length(f), n_len = glm::length(DVec3(n));
-    if (!(len > 0.0) || !std::isfinite(len) || !(std::abs(n_len - 1.0) < 0x1p-4))
-        return n;
-    const DVec3 exact = f / len;
-    const double cos = glm::dot(exact, DVec3(n)) / n_len;
-    if (cos >= 0.5) return Vec3(exact);
-    if (cos <= -0.5) return Vec3(-exact);
-    return n;
+float module_error_bound(const Ray& r, float t, const Vec3& x) {
+    return 8.0f * std::numeric_limits<float>::epsilon() *
+           (max_abs(r.o) + std::abs(t) * max_abs(r.w) + max_abs(x));
 }
 
-Vec3 accept_refined(const Vec3& x, const Vec3& refined, const Ray& r, float t) {
-    if (!is_finite(refined)) return x;
-    const float scale = max_abs(r.o) + std::abs(t) + max_abs(x);
-    return max_abs(refined - x) <= 0x1p-8f * scale ? refined : x;
+Vec3 accept_refined(const Vec3& x, const Vec3& refined, const Vec3& n, const Ray& r,
+                    float t) {
+    if (!is_finite(refined) || !is_finite(n)) return x;
+    const double bound = module_error_bound(r, t, x);
+    const DVec3 X(x), d = DVec3(refined) - X, w(r.w);
+    const double ww = glm::dot(w, w);
+    // NaN in any of them keeps x (the comparisons are false)
+    const double across_surface = std::abs(glm::dot(d, DVec3(n)));
+    const double across_ray =
+        ww > 0.0 ? glm::length(glm::cross(X - DVec3(r.o), w)) / std::sqrt(ww) : 0.0;
+    const bool agree =
+        across_surface <= bound && across_ray <= bound &&
+        max_abs(refined - x) <= 0x1p-8f * (max_abs(r.o) + std::abs(t) + max_abs(x));
+    return agree ? refined : x;
+}
+
+Vec3 unit_normal(const SceneTriangle& t) {
+    const DVec3 N = glm::cross(DVec3(t.v1) - DVec3(t.v0), DVec3(t.v2) - DVec3(t.v0));
+    const double len = glm::length(N);
+    return len > 0.0 ? Vec3(N * (1.0 / len)) : Vec3(0.0f);
 }
 
 }  // namespace raylab

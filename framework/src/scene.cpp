@@ -42,12 +42,16 @@ Aabb triangle_box(const SceneTriangle& t) {
     return box;
 }
 
-// Completes a primitive's hit: material, and a shading normal facing the ray
+// Completes a primitive's hit: material, and the shading normal on the side of the
+// surface the ray meets. The geometric normal decides the side (pbrt's rule): an
+// interpolated normal can face away from a ray that meets the front of its face at a
+// grazing angle, and turned to face the ray it would point behind the face, where the
+// lights the face sees are behind it
 void finish(Hit& hit, const Ray& r, int material, const Vec3& shading_normal) {
     hit.material = material;
     // The sign bits flipped or not, without a branch between -n and n: random rays meet
     // both sides of the Cornell box's walls
-    const std::uint32_t flip = std::uint32_t{glm::dot(shading_normal, r.w) > 0.0f} << 31;
+    const std::uint32_t flip = std::uint32_t{glm::dot(hit.n, r.w) > 0.0f} << 31;
     std::uint32_t bits[3];
     std::memcpy(bits, glm::value_ptr(shading_normal), sizeof bits);
     for (std::uint32_t& b : bits)
@@ -55,28 +59,29 @@ void finish(Hit& hit, const Ray& r, int material, const Vec3& shading_normal) {
     std::memcpy(glm::value_ptr(hit.ns), bits, sizeof bits);
 }
 
-// The hit recomputed in double on the primitive it lies on (raylab/refine.h, issue 8
-// B4): its point, and a sphere's normal, which the module derived from its float point.
-// source is -1 - index for a plane, the BVH primitive index for a sphere or triangle;
-// ns is the shading normal, a sphere's geometric one
-void refine_hit(const Scene& s, std::int64_t source, Hit& hit, const Ray& r, Vec3& ns) {
+// The hit's point recomputed in double on the primitive it lies on (raylab/refine.h),
+// kept only where the module's own point agrees with it within the module's rounding:
+// the module's normal is never replaced. source is -1 - index for a plane, the BVH
+// primitive index for a sphere or triangle
+void refine_hit(const Scene& s, std::int64_t source, Hit& hit, const Ray& r) {
     const Vec3 x = hit.position;
     const std::int64_t sphere_count = static_cast<std::int64_t>(s.spheres.size());
-    Vec3 on = x;
+    Vec3 on = x, n(0.0f);
     if (source < 0) {
-        on = refine_on_plane(x, r, s.planes[static_cast<size_t>(-1 - source)].plane);
+        const Plane& plane = s.planes[static_cast<size_t>(-1 - source)].plane;
+        on = refine_on_plane(x, r, plane);
+        n = plane.n;
     } else if (source < sphere_count) {
         const Sphere& sphere = s.spheres[static_cast<size_t>(source)].sphere;
         on = refine_on_sphere(x, r, hit.t, sphere);
-        hit.position = accept_refined(x, on, r, hit.t);
-        if (hit.position != x)
-            ns = hit.n = refine_sphere_normal(hit.position, hit.n, sphere);
-        return;
+        n = Vec3((DVec3(on) - DVec3(sphere.c)) / double(sphere.r));
     } else {
-        const SceneTriangle& t = s.triangles[static_cast<size_t>(source - sphere_count)];
+        const size_t k = static_cast<size_t>(source - sphere_count);
+        const SceneTriangle& t = s.triangles[k];
         on = refine_on_triangle(x, r, t.v0, t.v1, t.v2);
+        n = unit_normal(t);
     }
-    hit.position = accept_refined(x, on, r, hit.t);
+    hit.position = accept_refined(x, on, n, r, hit.t);
 }
 
 Vec3 interpolated_normal(const VertexNormals& tri, const Hit& hit) {
@@ -113,12 +118,6 @@ void validate(const View& view) {
         throw Error("camera up vector " + str(view.up) +
                     " is parallel to the view direction " + str(n));
     }
-}
-
-Vec3 unit_normal(const SceneTriangle& t) {
-    const DVec3 N = glm::cross(DVec3(t.v1) - DVec3(t.v0), DVec3(t.v2) - DVec3(t.v0));
-    const double len = glm::length(N);
-    return len > 0.0 ? Vec3(N * (1.0 / len)) : Vec3(0.0f);
 }
 
 void Scene::commit() {
@@ -323,7 +322,7 @@ void Scene::complete(Hit& hit, const Ray& r, const PrimRef& prim) const {
             source = sphere_count + prim.index;
         }
     }
-    if (!prim.refined) refine_hit(*this, source, hit, r, ns);
+    if (!prim.refined) refine_hit(*this, source, hit, r);
     finish(hit, r, material, ns);
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "raylab/error.h"
+#include "raylab/refine.h"  // unit_normal
 #include "test_helpers.h"
 
 using namespace raylab;

@@ -11,6 +11,7 @@
 
 #include "raylab/error.h"
 #include "raylab/renderer.h"
+#include "raylab/refine.h"  // unit_normal
 #include "test_helpers.h"
 
 using namespace raylab;

@@ -36,7 +36,7 @@ struct Hit {
     float t = kInfinity;  ///< distance along the ray: position = o + t w
     Vec3 position{0.0f};  ///< world-space hit point
     Vec3 n{0.0f};   ///< unit geometric normal, oriented by the primitive (see handouts)
-    Vec3 ns{0.0f};  ///< unit shading normal; filled by the framework, facing the ray
+    Vec3 ns{0.0f};  ///< unit shading normal (framework's), on n's side facing the ray
     Vec2 uv{0.0f};  ///< surface coordinates; triangles: barycentric weights of v1, v2
     int material = -1;  ///< material index; filled by the framework
 };

@@ -43,11 +43,6 @@ struct SceneTriangle {
     int material = 0;
 };
 
-/// Triangle t's unit normal as the contract defines hit.n: (v1 - v0) x (v2 - v0) in
-/// double, divided by its length, rounded to float; zero when the cross product has no
-/// length (a degenerate triangle, never hit). The reference module computes the same.
-Vec3 unit_normal(const SceneTriangle& t);
-
 /// A triangle's vertex normals: its shading normal is interpolated from them with the
 /// hit's uv. All three zero: flat shading (the geometric normal).
 struct VertexNormals {
