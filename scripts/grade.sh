@@ -549,6 +549,12 @@ $(capped "$log" | grep -e 'undefined reference' -e 'multiple definition' -e 'err
         fi
     done
 fi
+# Without namespaces the worker runs as nobody, under Landlock where the kernel has it
+# (worker_client.cpp): a copy of raylab-sandbox outside the closed build folder
+if [[ $sandbox == none ]] && ((landlock)); then
+    cp "$SANDBOX" "$SCRATCH/raylab-sandbox"
+    export RAYLAB_WORKER_LANDLOCK=$SCRATCH/raylab-sandbox
+fi
 chmod -R a+rX "$SCRATCH" # a worker without namespaces runs as nobody
 
 # ---- Grading ---------------------------------------------------------------------------

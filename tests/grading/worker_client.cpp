@@ -113,8 +113,20 @@ std::vector<std::string> bwrap_args(const std::string& worker) {
 pid_t spawn(const std::vector<std::string>& argv, int fd, const std::string& log,
             const std::string& private_dir) {
     const bool sanitized_worker = !env_or("RAYLAB_WORKER_SANITIZED", "").empty();
+    // Without namespaces grade.sh hands over a copy of raylab-sandbox: the worker then
+    // runs under Landlock too, able to read /usr and the workers only and to write its
+    // private folder, so that even code that ran before its seccomp filter (a slip in
+    // grade.sh's checks) could read no other file
+    std::vector<std::string> full = argv;
+    const std::string landlock = env_or("RAYLAB_WORKER_LANDLOCK", "");
+    if (!private_dir.empty() && !landlock.empty()) {
+        const std::string folder = std::filesystem::path(argv[0]).parent_path().string();
+        full = {landlock, "run",  "--ro", "/usr",      "--ro", "/etc/ld.so.cache",
+                "--ro",   folder, "--rw", private_dir, "--"};
+        full.insert(full.end(), argv.begin(), argv.end());
+    }
     std::vector<char*> args;
-    for (const std::string& a : argv)
+    for (const std::string& a : full)
         args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
     const pid_t pid = fork();
