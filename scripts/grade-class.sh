@@ -100,7 +100,7 @@ done
 csv_cell() {
     local v=$1
     [[ $v == [=+@$'\t'$'\r'-]* ]] && v="'$v"
-    if [[ $v == *[,\"]* || $2 == quoted ]]; then printf '"%s"' "${v//\"/\"\"}"; else printf '%s' "$v"; fi
+    if [[ $v == *[,\"]* || ${2:-} == quoted ]]; then printf '"%s"' "${v//\"/\"\"}"; else printf '%s' "$v"; fi
 }
 
 # Old results go (and the per-job builds of older versions of this script)

@@ -175,10 +175,17 @@ CXX=$(readlink -f "$CXX") # /usr/bin/c++ leads through /etc/alternatives, outsid
 declare -A error=() # module -> file with the reason it scores zero
 declare -A used=()  # module -> the hand-in's file that was graded
 notes=()            # ID<TAB>text: what the student should know (ID "-": the hand-in)
+# Text for the terminal: control characters, the C1 controls (U+009B is a CSI), the line
+# and paragraph separators and the bidirectional controls as \u{hex}, as in the reports
+shown_safe() {
+    perl -MEncode -ne 'my $t = decode("UTF-8", $_);
+        $t =~ s/([\x00-\x08\x0b-\x1f\x7f-\x9f\x{2028}\x{2029}\x{200e}\x{200f}\x{202a}-\x{202e}\x{2066}-\x{2069}\x{feff}])/sprintf("\\u{%x}", ord $1)/ge;
+        print encode("UTF-8", $t)'
+}
 zero() {
     error[$1]=$OUT/build-errors/$1.txt
     printf '%s\n' "$2" >"${error[$1]}"
-    note "$1: scores zero: $(head -n 1 "${error[$1]}")"
+    note "$1: scores zero: $(head -n 1 "${error[$1]}" | shown_safe)"
 }
 # At most 8 KB of a log, read from a file (never a pipe that could SIGPIPE its writer)
 capped() { head -c 8000 "$1" | sed -e "s|$SCRATCH/stage/[^/]*/||g" -e 's|/hand-in/||g'; }
