@@ -197,6 +197,7 @@ for name in "${STUDENTS[@]}"; do
         # Names and notes quoted (RFC 4180) and kept from a spreadsheet's formulas
         csv_cell "$shown_name"
         printf ',%s' "${row[@]}"
+        # shellcheck disable=SC2128 # notes is a string here
         printf ',%s,%s\n' "$total" "$(csv_cell "$notes" quoted)"
     } >>"$csv"
     {

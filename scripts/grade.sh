@@ -178,6 +178,7 @@ notes=()            # ID<TAB>text: what the student should know (ID "-": the han
 # Text for the terminal: control characters, the C1 controls (U+009B is a CSI), the line
 # and paragraph separators and the bidirectional controls as \u{hex}, as in the reports
 shown_safe() {
+    # shellcheck disable=SC2016 # a perl program
     perl -MEncode -ne 'my $t = decode("UTF-8", $_);
         $t =~ s/([\x00-\x08\x0b-\x1f\x7f-\x9f\x{2028}\x{2029}\x{200e}\x{200f}\x{202a}-\x{202e}\x{2066}-\x{2069}\x{feff}])/sprintf("\\u{%x}", ord $1)/ge;
         print encode("UTF-8", $t)'
@@ -246,7 +247,7 @@ if [[ $sandbox == none && -n $SOURCE && $SOURCE != "$RAYLAB_ROOT/exercises" ]]; 
     fi
 fi
 if [[ $sandbox == none && $EUID == 0 ]]; then
-    note "no namespaces here: the hand-in's compiler and worker run as nobody$( ((landlock)) && echo ', the compiler confined by Landlock')"
+    note "no namespaces here: the hand-in's compiler and worker run as nobody$( ((landlock)) && echo ', the compiler and the worker confined by Landlock')"
 fi
 
 # Runs COMMAND... where it sees /usr, the public headers (at /raylab/include), the folder
@@ -399,6 +400,7 @@ LIBRARY_SYMBOLS=$SCRATCH/library-symbols
 # dependency (also through _Pragma), with an absolute name, a ".." or a computed one.
 # Prints "FILE:LINE" (after comments are removed and digraphs and trigraphs read as #)
 outside_names() {
+    # shellcheck disable=SC2016 # a perl program
     (cd "$1" && find . -maxdepth 1 -type f -printf '%f\0' | LC_ALL=C sort -z |
         xargs -0 -r perl -0777 -ne '
             my $t = $_;
