@@ -72,19 +72,36 @@ mapfile -d '' -t STUDENTS < <(find "$class" -mindepth 1 -maxdepth 1 \( -type d -
     -printf '%f\0' | LC_ALL=C sort -z)
 ((${#STUDENTS[@]})) || die "$class has no hand-in folders"
 
-# NAME as the table and the output folder show it: control characters escaped
+# NAME as the table and the output folder show it: control characters escaped, one to
+# one (a backslash is doubled, so no two names show alike: the name is also the output
+# folder and the table's key)
 shown() {
-    local s=${1//\\/\\\\}
+    local s=${1//\\/\\\\} out='' k c
     s=${s//$'\n'/\\n}
     s=${s//$'\t'/\\t}
     s=${s//$'\r'/\\r}
-    printf '%s' "$s" | LC_ALL=C tr '\001-\037\177' '?'
+    for ((k = 0; k < ${#s}; k++)); do
+        c=${s:k:1}
+        if [[ $c == [$'\001'-$'\037'$'\177'] ]]; then
+            out+=$(printf '\\x%02x' "'$c")
+        else
+            out+=$c
+        fi
+    done
+    printf '%s' "$out"
 }
 declare -A SHOWN=()
 for name in "${STUDENTS[@]}"; do
     SHOWN[$name]=$(shown "$name")
-    [[ ${SHOWN[$name]} != . && ${SHOWN[$name]} != .. ]] || SHOWN[$name]="_${SHOWN[$name]}"
+    [[ ${SHOWN[$name]} != . ]] || SHOWN[$name]='\x2e'
+    [[ ${SHOWN[$name]} != .. ]] || SHOWN[$name]='\x2e\x2e'
 done
+# A spreadsheet runs a cell that starts with = + - @ (or a tab, a CR) as a formula
+csv_cell() {
+    local v=$1
+    [[ $v == [=+@$'\t'$'\r'-]* ]] && v="'$v"
+    if [[ $v == *[,\"]* || ${2:-} == quoted ]]; then printf '"%s"' "${v//\"/\"\"}"; else printf '%s' "$v"; fi
+}
 
 # Old results go (and the per-job builds of older versions of this script)
 rm -rf "$out/students" "$out/class.csv" "$out/class.md" "$out/builds"
@@ -177,10 +194,11 @@ for name in "${STUDENTS[@]}"; do
     total=$(awk -v t="$total" 'BEGIN { print t + 0 }')
     shown_name=${SHOWN[$name]}
     {
-        # A folder name with a comma or a quote is quoted (RFC 4180)
-        if [[ $shown_name == *[,\"]* ]]; then printf '"%s"' "${shown_name//\"/\"\"}"; else printf '%s' "$shown_name"; fi
+        # Names and notes quoted (RFC 4180) and kept from a spreadsheet's formulas
+        csv_cell "$shown_name"
         printf ',%s' "${row[@]}"
-        printf ',%s,"%s"\n' "$total" "${notes//\"/\"\"}"
+        # shellcheck disable=SC2128 # notes is a string here
+        printf ',%s,%s\n' "$total" "$(csv_cell "$notes" quoted)"
     } >>"$csv"
     {
         printf '| %s |' "${shown_name//|/\\|}"

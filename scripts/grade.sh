@@ -175,10 +175,18 @@ CXX=$(readlink -f "$CXX") # /usr/bin/c++ leads through /etc/alternatives, outsid
 declare -A error=() # module -> file with the reason it scores zero
 declare -A used=()  # module -> the hand-in's file that was graded
 notes=()            # ID<TAB>text: what the student should know (ID "-": the hand-in)
+# Text for the terminal: control characters, the C1 controls (U+009B is a CSI), the line
+# and paragraph separators and the bidirectional controls as \u{hex}, as in the reports
+shown_safe() {
+    # shellcheck disable=SC2016 # a perl program
+    perl -MEncode -ne 'my $t = decode("UTF-8", $_);
+        $t =~ s/([\x00-\x08\x0b-\x1f\x7f-\x9f\x{2028}\x{2029}\x{200e}\x{200f}\x{202a}-\x{202e}\x{2066}-\x{2069}\x{feff}])/sprintf("\\u{%x}", ord $1)/ge;
+        print encode("UTF-8", $t)'
+}
 zero() {
     error[$1]=$OUT/build-errors/$1.txt
     printf '%s\n' "$2" >"${error[$1]}"
-    note "$1: scores zero: $(head -n 1 "${error[$1]}")"
+    note "$1: scores zero: $(head -n 1 "${error[$1]}" | shown_safe)"
 }
 # At most 8 KB of a log, read from a file (never a pipe that could SIGPIPE its writer)
 capped() { head -c 8000 "$1" | sed -e "s|$SCRATCH/stage/[^/]*/||g" -e 's|/hand-in/||g'; }
@@ -239,7 +247,7 @@ if [[ $sandbox == none && -n $SOURCE && $SOURCE != "$RAYLAB_ROOT/exercises" ]]; 
     fi
 fi
 if [[ $sandbox == none && $EUID == 0 ]]; then
-    note "no namespaces here: the hand-in's compiler and worker run as nobody$( ((landlock)) && echo ', the compiler confined by Landlock')"
+    note "no namespaces here: the hand-in's compiler and worker run as nobody$( ((landlock)) && echo ', the compiler and the worker confined by Landlock')"
 fi
 
 # Runs COMMAND... where it sees /usr, the public headers (at /raylab/include), the folder
@@ -364,10 +372,57 @@ compile_cached() {
     key=$({ echo "$TOOL_KEY"; hash_files "$dir"; } | key_of).o
     from_cache "$key" "$2" && return 0
     (compile "$1" "$2") || return
-    grep -rqE '\.incbin|#[[:space:]]*embed|__has_embed' "$dir" && return 0
+    # An asm statement may read a file (.incbin, also spelt ".inc" "bin" or pasted
+    # together by a macro): never cached, like #embed
+    grep -rqE 'asm|incbin|embed|##' "$dir" && return 0
     tr ' \\' '\n\n' <"$2.d" | grep -v -e '^$' -e ':$' -e '^@HANDIN@/' -e '^@INCLUDE@/' \
         -e '^/usr/include/' -e '^/usr/lib/gcc/' | grep -q . && return 0
     to_cache "$key" "$2"
+}
+
+# Every symbol the worker's libraries and trusted objects define or look up: a hand-in
+# object that defines one too (of any kind: a weak object, a GNU unique global) would take
+# its place for code that runs before the sandbox is complete, such as the seccomp
+# filter's own setup. Names are compared, not kinds
+LIBRARY_SYMBOLS=$SCRATCH/library-symbols
+{
+    for l in c.so.6 m.so.6 stdc++.so gcc_s.so.1 seccomp.so tinyobjloader.so; do
+        f=$(readlink -f "$("$CXX" -print-file-name="lib$l")")
+        [[ -f $f ]] && nm -D "$f" 2>/dev/null
+    done
+    nm -g --defined-only "$CORE" "$WORKER_MAIN" 2>/dev/null
+} | awk '{ n = $NF; sub(/@.*/, "", n); if (n != "" && n !~ /:$/) print n }' |
+    LC_ALL=C sort -u >"$LIBRARY_SYMBOLS"
+[[ $(wc -l <"$LIBRARY_SYMBOLS") -gt 1000 ]] || die "could not list the worker's library symbols (nm)"
+
+# The first directive in the staged files of folder $1 that names a file outside it:
+# #include, #include_next, #import, #embed, __has_include(_next), __has_embed, #pragma GCC
+# dependency (also through _Pragma), with an absolute name, a ".." or a computed one.
+# Prints "FILE:LINE" (after comments are removed and digraphs and trigraphs read as #)
+outside_names() {
+    # shellcheck disable=SC2016 # a perl program
+    (cd "$1" && find . -maxdepth 1 -type f -printf '%f\0' | LC_ALL=C sort -z |
+        xargs -0 -r perl -0777 -ne '
+            my $t = $_;
+            $t =~ s/\r//g;
+            $t =~ s{/\*(.*?)\*/}{my $c = $1; " " . ("\n" x ($c =~ tr/\n//))}gse;
+            $t =~ s{//[^\n]*}{}g;
+            $t =~ s/\\\n/ /g;
+            $t =~ s/%:|\?\?=/#/g;
+            my $n = 0;
+            for my $line (split /\n/, $t, -1) {
+                $n++;
+                my @args;
+                push @args, $1 if $line =~ /^\s*#\s*(?:include|include_next|import|embed)\b\s*(.*)/;
+                push @args, $1 while $line =~ /__has_(?:include|include_next|embed)\s*\(\s*([^)]*)/g;
+                my $bad = $line =~ /^\s*#\s*pragma\s+GCC\s+dependency\b/ ||
+                    $line =~ /_Pragma\s*\(.*dependency/;
+                for my $a (@args) {
+                    my ($p) = $a =~ /^(?:"([^"]*)"|<([^>]*)>)/ ? ($1 // $2) : (undef);
+                    $bad ||= !defined $p || $p =~ m{^/} || $p =~ m{(^|/)\.\.(/|$)};
+                }
+                if ($bad) { print "$ARGV:$n\n"; exit 0; }
+            }') | head -n 1
 }
 
 declare -A compiled=() # module -> its object, compiled and checked
@@ -401,10 +456,14 @@ link_cached() {
             others+=("$BUILD/stub-objects/$other.o")
         fi
     done
-    key=$({ echo "$LINK_KEY $id"; cat "$obj" "${others[@]}" | sha256sum; } | key_of).worker
+    key=$({ echo "$LINK_KEY worker-main-first $id"; cat "$obj" "${others[@]}" | sha256sum; } | key_of).worker
     from_cache "$key" "$worker" && return 0
     # shellcheck disable=SC2086
-    "$CXX" -o "$worker" "$obj" "${others[@]}" "$WORKER_MAIN" "$CORE" $LIBS && to_cache "$key" "$worker"
+    # The worker's own objects first: of the template and inline code that both they and
+    # the hand-in emit, the linker keeps the first copy, so the code that installs the
+    # sandbox runs the grader's copy
+    "$CXX" -o "$worker" -Wl,--whole-archive "$WORKER_MAIN" -Wl,--no-whole-archive "$obj" \
+        "${others[@]}" "$CORE" $LIBS && to_cache "$key" "$worker"
 }
 
 if ((reference)); then
@@ -417,6 +476,15 @@ else
         [[ -n ${error[$id]:-} ]] && continue
         obj=$SCRATCH/obj/$id.o
         log=$SCRATCH/obj/$id.log
+        # A file named by an absolute path or one with "..": without namespaces, Landlock
+        # refuses to open an outside file that exists while a missing one is merely not
+        # found, so even __has_include would tell the student whether a path exists.
+        # Computed names (a macro) are refused too: the name is only known after expansion
+        where=$(outside_names "$SCRATCH/stage/$id") || true
+        if [[ -n $where ]]; then
+            zero "$id" "$where: only the hand-in's own files and the public headers may be included, by a plain relative name (no absolute path, no \"..\", no macro)"
+            continue
+        fi
         # shellcheck disable=SC2086
         status=0
         compile_cached "$SCRATCH/stage/$id/$id.cpp" "$obj" >"$log" 2>&1 || status=$?
@@ -454,8 +522,18 @@ $(cat "$log.quoted")"
             readelf -SW "$obj" | sed -n 's/^ *\[ *[0-9]*\] \([^ ]*\).*/\1/p' |
                 grep -E '^(\.rela)?\.(preinit_array|init|ctors|dtors|init_array\..*|ctors\..*|preinit_array\..*)$'
             readelf -sW "$obj" | awk '$4 == "IFUNC" { print "ifunc " $8 }'
-            nm -g --defined-only "$obj" | awk 'NF == 3 && $2 ~ /^[TWi]$/ && $3 !~ /^_Z/ {
-                print "symbol " $3 }'
+            # C-level names: no function, nothing weak or unique (a C++ file's own
+            # functions are mangled; its global variables may stay, unless a library
+            # knows their name). Mangled names a library knows too: only the weak
+            # template and inline definitions of the standard library, glm and the
+            # framework's headers, which every file that uses them emits (COMDAT)
+            nm -g --defined-only "$obj" | awk 'NF == 3 { print $3, $2 }' | LC_ALL=C sort -u |
+                LC_ALL=C join -a 1 -o 0,1.2,2.1 -e - - "$LIBRARY_SYMBOLS" | awk '
+                    $1 == "DW.ref.__gxx_personality_v0" && $2 == "V" { next }
+                    $1 !~ /^_Z/ && ($2 ~ /^[TtWwVvuiI]$/ || $3 != "-") { print "symbol " $1; next }
+                    $1 ~ /^_Z/ && $3 != "-" && !($2 ~ /^[WVu]$/ &&
+                        $1 ~ /^_Z(T[VIS]|GV|TH|TW)?Z?N?K?(St|Sa|Sb|Ss|Si|So|Sd|9__gnu_cxx|3glm|6raylab)/) {
+                        print "symbol " $1 }' | c++filt
             nm -g --defined-only "$obj" | awk 'NF == 3 && ($3 ~ /^_Z(nw|na|dl|da)/ ||
                 ($2 !~ /^[WVu]$/ && $3 ~ /^_Z(N|NK)?(St|Sa|Sb|Ss|Si|So|Sd|N9__gnu_cxx|N10__cxxabiv1)/)) {
                     print "symbol " $3 }' | c++filt
@@ -479,6 +557,12 @@ $(cat "$log.quoted")"
 $(capped "$log" | grep -e 'undefined reference' -e 'multiple definition' -e 'error' | head -n 20 | sed 's/^/    /')"
         fi
     done
+fi
+# Without namespaces the worker runs as nobody, under Landlock where the kernel has it
+# (worker_client.cpp): a copy of raylab-sandbox outside the closed build folder
+if [[ $sandbox == none ]] && ((landlock)); then
+    cp "$SANDBOX" "$SCRATCH/raylab-sandbox"
+    export RAYLAB_WORKER_LANDLOCK=$SCRATCH/raylab-sandbox
 fi
 chmod -R a+rX "$SCRATCH" # a worker without namespaces runs as nobody
 

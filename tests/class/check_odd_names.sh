@@ -17,6 +17,10 @@ sed 's/namespace raylab::reference/namespace raylab::student/' "$root/solutions/
     >"$work/class/s3"$'\n'"newline/03_plane.cpp"
 cp "$work/class/s3"$'\n'"newline/03_plane.cpp" "$work/class/s2|pipe/"
 ln -s "s2|pipe" "$work/class/s4_link"
+# Two names that once showed alike (a control character was shown as "?"): each keeps
+# its own points; and a name a spreadsheet would run as a formula
+mkdir -p "$work/class/s6a?b" "$work/class/s6a"$'\x01'"b" "$work/class/=s7"
+cp "$work/class/s2|pipe/03_plane.cpp" "$work/class/s6a"$'\x01'"b/"
 ln -s "../s2|pipe/03_plane.cpp" "$work/class/s5_copier/03_plane.cpp"
 "$root/scripts/grade-class.sh" "$work/class" --out "$work/out" >"$work/log" 2>&1 ||
     { cat "$work/log"; exit 1; }
@@ -25,7 +29,8 @@ python3 - "$work/out/class.csv" <<'PY'
 import csv, sys
 rows = list(csv.reader(open(sys.argv[1])))
 head, rows = rows[0], {r[0]: r for r in rows[1:]}
-want = ['s1,comma "quoted"', "s2|pipe", "s3\\nnewline", "s4_link", "s5_copier"]
+want = ["'=s7", 's1,comma "quoted"', "s2|pipe", "s3\\nnewline", "s4_link", "s5_copier",
+        "s6a?b", "s6a\\x01b"]
 assert sorted(rows) == want, sorted(rows)
 assert all(len(r) == len(head) for r in rows.values()), [len(r) for r in rows.values()]
 total, notes = head.index("total"), head.index("notes")
@@ -38,6 +43,9 @@ check("s3\\nnewline", 10, "04_sphere missing")
 check("s4_link", 0, "refused: the hand-in is a symbolic link")
 check("s5_copier", 0, "03_plane refused")
 check("s5_copier", 0, "refused 03_plane.cpp: a symbolic link")
+check("s6a?b", 0, "03_plane missing")
+check("s6a\\x01b", 10, "04_sphere missing")
+check("'=s7", 0, "03_plane missing")
 PY
 grep -qF '| s2\|pipe |' "$work/out/class.md" || { echo "FAIL: '|' not escaped"; exit 1; }
 echo PASS

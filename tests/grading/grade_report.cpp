@@ -238,7 +238,21 @@ std::string clean_text(const std::string& s) {
             ++k;
             continue;
         }
-        out.append(s, k, size_t(n) + 1);
+        // The C1 controls (U+009B is a terminal's CSI), the line and paragraph separators
+        // and the bidirectional controls can move the cursor or reorder what a reader
+        // sees: they are written out as a backslash, u and {hex}
+        char32_t cp = c & (n == 1 ? 0x1f : n == 2 ? 0x0f : 0x07);
+        for (int j = 1; j <= n; ++j)
+            cp = (cp << 6) | (byte(k + j) & 0x3f);
+        if ((cp >= 0x80 && cp <= 0x9f) || cp == 0x2028 || cp == 0x2029 || cp == 0x200e ||
+            cp == 0x200f || (cp >= 0x202a && cp <= 0x202e) ||
+            (cp >= 0x2066 && cp <= 0x2069) || cp == 0xfeff) {
+            char hex[16];
+            std::snprintf(hex, sizeof hex, "\\u{%x}", unsigned(cp));
+            out += hex;
+        } else {
+            out.append(s, k, size_t(n) + 1);
+        }
         k += size_t(n) + 1;
     }
     return out;

@@ -113,8 +113,20 @@ std::vector<std::string> bwrap_args(const std::string& worker) {
 pid_t spawn(const std::vector<std::string>& argv, int fd, const std::string& log,
             const std::string& private_dir) {
     const bool sanitized_worker = !env_or("RAYLAB_WORKER_SANITIZED", "").empty();
+    // Without namespaces grade.sh hands over a copy of raylab-sandbox: the worker then
+    // runs under Landlock too, able to read /usr and the workers only and to write its
+    // private folder, so that even code that ran before its seccomp filter (a slip in
+    // grade.sh's checks) could read no other file
+    std::vector<std::string> full = argv;
+    const std::string landlock = env_or("RAYLAB_WORKER_LANDLOCK", "");
+    if (!private_dir.empty() && !landlock.empty()) {
+        const std::string folder = std::filesystem::path(argv[0]).parent_path().string();
+        full = {landlock, "run",  "--ro", "/usr",      "--ro", "/etc/ld.so.cache",
+                "--ro",   folder, "--rw", private_dir, "--"};
+        full.insert(full.end(), argv.begin(), argv.end());
+    }
     std::vector<char*> args;
-    for (const std::string& a : argv)
+    for (const std::string& a : full)
         args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
     const pid_t pid = fork();
@@ -187,6 +199,81 @@ bool bwrap_works() {
     return works;
 }
 
+// The processes the worker's sandbox runs (pid, the launcher, and all it started):
+// bubblewrap's own processes aside, each must be confined by the worker's seccomp filter
+// and no_new_privs. The worker's "hello" alone proves nothing: a hand-in that replaces a
+// library function the filter's setup calls can make the worker report a filter that was
+// never loaded. The kernel's view cannot be faked. Returns what is wrong, or "".
+std::string confinement_problem(pid_t launcher, bool launcher_is_bwrap) {
+    std::vector<pid_t> pending = {launcher}, seen;
+    while (!pending.empty() && seen.size() < 4096) {
+        const pid_t p = pending.back();
+        pending.pop_back();
+        seen.push_back(p);
+        std::error_code ec;
+        for (const auto& task : std::filesystem::directory_iterator(
+                 "/proc/" + std::to_string(p) + "/task", ec)) {
+            FILE* f = std::fopen((task.path() / "children").c_str(), "r");
+            if (!f) continue;
+            long child = 0;
+            while (std::fscanf(f, "%ld", &child) == 1)
+                pending.push_back(pid_t(child));
+            std::fclose(f);
+        }
+    }
+    int confined = 0;
+    for (const pid_t p : seen) {
+        const std::string proc = "/proc/" + std::to_string(p);
+        std::error_code ec;
+        // bubblewrap's processes (it cannot be replaced: exe changes only with execve)
+        if (launcher_is_bwrap &&
+            std::filesystem::read_symlink(proc + "/exe", ec) == "/usr/bin/bwrap")
+            continue;
+        FILE* f = std::fopen((proc + "/status").c_str(), "r");
+        if (!f) continue;  // it has just exited
+        int seccomp = -1, no_new_privs = -1;
+        char line[256];
+        while (std::fgets(line, sizeof line, f)) {
+            std::sscanf(line, "Seccomp: %d", &seccomp);
+            std::sscanf(line, "NoNewPrivs: %d", &no_new_privs);
+        }
+        std::fclose(f);
+        if (seccomp != 2 || no_new_privs != 1)
+            return "the worker runs without the grader's seccomp filter (process " +
+                   std::to_string(p) + ": Seccomp " + std::to_string(seccomp) +
+                   ", NoNewPrivs " + std::to_string(no_new_privs) +
+                   "): the hand-in's code interfered with the sandbox's setup, e.g. by "
+                   "defining a C library or libseccomp function";
+        ++confined;
+    }
+    return confined > 0 ? "" : "the worker's process was not found after it started";
+}
+
+// Kills every process this one started and has not reaped. This process is a child
+// subreaper (start() makes it one), so a process the worker left behind, even one that
+// forked twice and called setsid, is re-parented here instead of to init: none outlives
+// the grade
+void kill_leftovers() {
+    for (int round = 0; round < 100; ++round) {
+        std::vector<pid_t> children;
+        std::error_code ec;
+        for (const auto& task :
+             std::filesystem::directory_iterator("/proc/self/task", ec)) {
+            FILE* f = std::fopen((task.path() / "children").c_str(), "r");
+            if (!f) continue;
+            long child = 0;
+            while (std::fscanf(f, "%ld", &child) == 1)
+                children.push_back(pid_t(child));
+            std::fclose(f);
+        }
+        if (children.empty()) return;
+        for (const pid_t c : children)
+            kill(c, SIGKILL);
+        for (const pid_t c : children)
+            waitpid(c, nullptr, 0);
+    }
+}
+
 std::string signal_text(int sig) {
     const char* name = sigabbrev_np(sig);
     const char* what = sigdescr_np(sig);
@@ -233,6 +320,7 @@ class Worker {
         kill(-pid_, SIGKILL);
         kill(pid_, SIGKILL);
         waitpid(pid_, nullptr, 0);
+        kill_leftovers();
         close(fd_);
         pid_ = -1;
         remove_private_dir();
@@ -261,7 +349,9 @@ class Worker {
         if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0)
             worker_lost("crash", "socketpair failed");
         const std::string log = env_or("RAYLAB_WORKER_LOG", "");
-        if (bwrap_works()) {
+        prctl(PR_SET_CHILD_SUBREAPER, 1);
+        const bool bwrap = bwrap_works();
+        if (bwrap) {
             pid_ = spawn(bwrap_args(worker), fds[1], log, "");
         } else {
             char dir[] = "/tmp/raylab-worker-XXXXXX";
@@ -275,6 +365,10 @@ class Worker {
         read(&h, sizeof h, "while starting (in a static initializer?)");
         if (h.kind != rpc::Kind::hello) died("while starting");
         seccomp_ = h.flags & 1;
+#if RAYLAB_WORKER_SECCOMP
+        const std::string problem = confinement_problem(pid_, bwrap);
+        if (!problem.empty()) worker_lost("crash", problem);
+#endif
         log_line("sandbox\t" + sandbox_description());
     }
 
@@ -291,6 +385,7 @@ class Worker {
             kill(pid_, SIGKILL);
             waitpid(pid_, &status, 0);
         }
+        kill_leftovers();
         close(fd_);
         pid_ = -1;
         remove_private_dir();

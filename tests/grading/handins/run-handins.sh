@@ -20,6 +20,10 @@
 #   via-link      SUBMISSION is a symbolic link to the hand-in's folder
 #   ipc           grading leaves no new 256 MiB SysV shared-memory segment behind (the
 #                 size the hand-in asks for: other programs on the machine use SysV IPC too)
+#   noleftover    no process of the sandbox's uid (nobody) whose program was deleted (a
+#                 worker of a finished grading: grade.sh removes its scratch folder) is
+#                 left once grading returns
+#   size BYTES    results.json, junit.xml and summary.txt hold at most BYTES each
 #   unconfined    without namespaces and without Landlock, grade.sh refuses the hand-in
 #                 unless --trusted; graded then with --trusted
 # Every hand-in is graded with a secret the grader can read and the student must never
@@ -91,6 +95,16 @@ materialize() {
     done <"$src/expect"
 }
 
+# Processes of nobody running a deleted program: workers that outlived their grading
+leftovers() {
+    local p exe
+    for p in $(pgrep -u 65534 2>/dev/null || true); do
+        exe=$(readlink "/proc/$p/exe" 2>/dev/null) || continue
+        [[ $exe == *' (deleted)' ]] && echo "$p $exe"
+    done
+    return 0
+}
+
 # The score of module $2 in the summary $1
 score_of() { awk -v id="$2" '/^total/ { exit } $1 == id { print $3; exit }' "$1"; }
 
@@ -127,6 +141,17 @@ for name in "${names[@]}"; do
     while read -r id want; do
         case $id in
             crlf | settle | via-link | unconfined | link | fifo | big | '') continue ;;
+            noleftover)
+                left=$(leftovers)
+                [[ -z $left ]] ||
+                    { echo "FAIL $name: processes of nobody outlived grading: $left"; failed=1; }
+                continue ;;
+            size)
+                for f in results.json junit.xml summary.txt; do
+                    [[ $(stat -c %s "$out/$f") -le $want ]] ||
+                        { echo "FAIL $name: $f holds more than $want bytes"; failed=1; }
+                done
+                continue ;;
             ipc)
                 [[ $(ipcs -m 2>/dev/null | awk '$5 == 268435456' | wc -l) == "$ipc_before" ]] ||
                     { echo "FAIL $name: a SysV shared-memory segment was left behind"; ipcs -m; failed=1; }
