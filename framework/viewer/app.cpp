@@ -65,8 +65,8 @@ void wait_for_events(Viewer& v) {
     } else if (v.extra_frames > 0) {
         // ImGui settles over a frame or two. While the worker renders a settled change,
         // it has the CPU first: its result wakes us and that frame settles ImGui too (a
-        // slow one: after 0.1 s). With Mesa's software GL a window frame costs about
-        // 9 ms of both cores, which a 40 ms render otherwise loses
+        // slow one: after 0.1 s). With Mesa's software GL a window frame costs both
+        // cores a noticeable part of a render
         if (v.worker->busy() && !v.state.interacting) {
             glfwWaitEventsTimeout(0.1);
         } else {
