@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""docs/architecture.md's "Input limits" tables are the limits the code enforces.
+"""docs/input.md's "Input limits" tables are the limits the code enforces.
 
   check_limits_doc.py ROOT
 
@@ -114,7 +114,7 @@ def main():
         print("usage: check_limits_doc.py ROOT", file=sys.stderr)
         return 2
     root = pathlib.Path(sys.argv[1])
-    doc = root / "docs" / "architecture.md"
+    doc = root / "docs" / "input.md"
     table = rows(doc.read_text(encoding="utf-8"))
     problems = []
     if not table:
