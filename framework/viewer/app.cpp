@@ -341,8 +341,8 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         // A new job starts once this window frame is drawn (before the swap, which may
         // wait for the display): with a software OpenGL (Mesa's llvmpipe, as under
-        // Xvfb) the frame's drawing otherwise ran on the render's cores while it
-        // started, and the frame's render time was a fifth longer on two threads
+        // Xvfb) the frame's drawing otherwise runs on the render's cores while it
+        // starts and slows it (docs/decisions/0010)
         if (v->state.dirty) glFinish();
         submit_if_dirty(*v);
         if (v->screenshot_requested) take_screenshot(*v);
