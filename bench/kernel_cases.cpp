@@ -11,7 +11,7 @@ constexpr double kOriginHalfSide = 0.125;  // ray origins in [-1/8, 1/8]^3
 constexpr double kSize = 0.25;             // sphere radius; triangle vertices: c +- kSize
 
 // Rounds to float where the compiler cannot see through it: GCC 12.2's SLP vectorizer at
-// -O2/-O3 skips the rounding in `r.o = Vec3(o); ... DVec3(r.o)` (issue 8, B7)
+// -O2/-O3 skips the rounding in `r.o = Vec3(o); ... DVec3(r.o)`
 [[gnu::noinline]] Vec3 to_float(const DVec3& v) {
     return Vec3(v);
 }

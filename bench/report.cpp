@@ -225,8 +225,8 @@ void print_targets() {
     if (target_records().empty()) return;
     print_heading(
         "Targets",
-        "The issues' targets against this run's figures (issue 8: the kernels' "
-        "cost; issue 9: speed against Embree, frame time, build, memory). A ratio "
+        "The targets against this run's figures (the kernels' cost; speed against "
+        "Embree, frame time, build, memory). A ratio "
         "to Embree is raylab's speed over Embree's (1 = as fast); a kernel's is "
         "its ns/test over the float formulation's, on the worst ray set. measured "
         "is the figure of the tables above (from the medians of the rounds); rounds "

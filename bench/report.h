@@ -82,7 +82,7 @@ struct RoundTimes {
 RoundTimes interleaved_seconds(int repeats,
                                const std::vector<std::function<void()>>& works);
 
-/// A figure the run measured against the target an issue sets for it. The sections
+/// A figure the run measured against the target set for it. The sections
 /// record them as they go; print_targets() closes the run with one table, so the targets
 /// table in docs/benchmarks.md comes from the same run as the tables above it.
 /// higher_is_better: the target is a lower bound (a speed ratio), else an upper bound.

@@ -268,7 +268,7 @@ void run_kernel_section(const BenchOptions& opt) {
             "float ray and geometry as stored. ns/test: median of %d timed passes, one "
             "call through a function pointer per test (as through ModuleTable), full Hit "
             "returned; the kernels of a ray set are timed interleaved, and x float is "
-            "ns/test over the first row's (the float formulation issue 8 compares "
+            "ns/test over the first row's (the float formulation the targets compare "
             "with). missed: the truth hits, the kernel does not; false hits: the "
             "reverse. rel err t: |t - t_true| / t_true where both hit.",
             opt.kernel_rays, opt.repeats));

@@ -370,7 +370,7 @@ void print_subheading(const char* title, const std::string& text) {
     std::printf("### %s\n\n%s\n\n", title, text.c_str());
 }
 
-// The targets: the cheapest measured setting that reaches the reference's RMSE
+// The sampling targets: the cheapest measured setting that reaches the reference's RMSE
 void print_target_table(const std::vector<Point>& points) {
     print_subheading(
         "The targets",

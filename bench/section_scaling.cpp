@@ -46,7 +46,7 @@ void build_row(Scene& scene, int repeats, std::unique_ptr<PeerScene>& peer,
         static_cast<double>(scene.triangles.size() * sizeof(SceneTriangle) +
                             scene.normals.size() * sizeof(VertexNormals));
     const auto ms = [](double s) { return std::isnan(s) ? "-" : fmt("%.1f", 1e3 * s); };
-    // Issue 9's targets, for the meshes of 80k triangles and more
+    // The targets for meshes of 80k triangles and more
     if (n >= 80000) {
         if (!std::isnan(embree_s[1]))
             record_target(fmt("%zu triangles: build, raylab / Embree MEDIUM (2 threads)",
@@ -81,7 +81,7 @@ void speed_rows(const Scene& scene, const ModuleTable& modules, const PeerScene*
     const RoundTimes rounds = interleaved_seconds(repeats, works);
     const std::vector<double> s = rounds.medians();
     const double n = static_cast<double>(rays.size());
-    // Issue 9's target for meshes of 80k to 1M triangles
+    // The target for meshes of 80k to 1M triangles
     const size_t triangles = scene.triangles.size();
     if (peer && triangles >= 80000 && triangles <= 1000000)
         record_target(fmt("%zu triangles, %s rays, 1 thread: raylab / Embree", triangles,

@@ -144,15 +144,15 @@ void bench_build(const std::string& name, Scene& scene, const BenchOptions& opt,
                       peer[1] ? fmt("%.2f", 1e3 * build_s[1]) : "-"});
 }
 
-// Issue 9's target for raylab's speed over Embree's: the Cornell box >= 1, meshes of
+// The target for raylab's speed over Embree's: the Cornell box >= 1, meshes of
 // 80k to 1M triangles >= 0.6
 double embree_target(const std::string& scene_name) {
     return scene_name == "cornell" ? 1.0 : 0.6;
 }
 
 // The rays dealt to `threads` threads (1 or 2) in runs of 16 in turn, a packet each
-// (until 2026-11-26 each took a contiguous half: the halves of an image differ in cost,
-// so one thread waited on the other, which measured the split more than the tracer)
+// (not a contiguous half each: the halves of an image differ in cost, so one thread would
+// wait on the other, which measures the split more than the tracer)
 std::vector<std::vector<Ray>> deal_runs(const std::vector<Ray>& rays, int threads) {
     std::vector<std::vector<Ray>> part(static_cast<size_t>(threads));
     for (size_t first = 0; first < rays.size(); first += 16) {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The viewer's full frame against raylab-render's, the same frame on the same machine
-# (issue 9: the viewer's frame time within 10 % of raylab-render's for the same settings).
+# (the target: the viewer's full frame as fast as raylab-render's, within a tenth).
 #
 # Usage: bench/viewer-timing.sh BUILD_DIR [--rounds N] [--repeat N] [--update FILE]
 #   BUILD_DIR  holds framework/raylab-render and framework/viewer/raylab (a build with

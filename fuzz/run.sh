@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs the libFuzzer targets on copies of the seed corpus (docs/architecture.md, "Fuzzing";
+# Runs the libFuzzer targets on copies of the seed corpus (docs/input.md, "Fuzzing";
 # ./scripts/dev.sh fuzz SECONDS builds them and calls this).
 # Usage: fuzz/run.sh BUILD_DIR SECONDS [TARGET...]   (targets: obj view options)
 # Crashes land in BUILD_DIR/artifacts/; keep each as fuzz/crashes/TARGET-NAME and it is

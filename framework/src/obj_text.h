@@ -13,7 +13,7 @@
 namespace raylab::obj {
 
 /// Polygons with more corners than this are split into a fan here: tinyobjloader's
-/// ear clipping costs O(n^2) per polygon (a 100k-corner polygon took 51 s).
+/// ear clipping costs O(n^2) per polygon (docs/decisions/0011).
 constexpr size_t kMaxEarClipCorners = 32;
 
 /// Material names are kept here, not in the text tinyobjloader reads: it reads a `usemtl`

@@ -38,7 +38,7 @@ int preview_factor(double full_ms) {
 std::vector<int> coarse_levels(const FrameState& f, const RenderJob& job) {
     if (job.preview_factor > 1 || !f.have_full) return {};
     const int factor = preview_factor(f.last_full.milliseconds);
-    if (factor < 3) return {};  // the full frame comes within about 100 ms
+    if (factor < 3) return {};  // a full frame near preview speed needs no preview
     std::vector<int> levels{factor};
     if (factor >= 4) levels.push_back(2);
     // A drag that just ended left a preview of these inputs: start finer than it

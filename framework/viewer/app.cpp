@@ -65,8 +65,8 @@ void wait_for_events(Viewer& v) {
     } else if (v.extra_frames > 0) {
         // ImGui settles over a frame or two. While the worker renders a settled change,
         // it has the CPU first: its result wakes us and that frame settles ImGui too (a
-        // slow one: after 0.1 s). With Mesa's software GL a window frame costs about
-        // 9 ms of both cores, which a 40 ms render otherwise loses
+        // slow one: after 0.1 s). With Mesa's software GL a window frame costs both
+        // cores a noticeable part of a render
         if (v.worker->busy() && !v.state.interacting) {
             glfwWaitEventsTimeout(0.1);
         } else {
@@ -341,8 +341,8 @@ int run_viewer(const Options& options, const ViewerOptions& viewer_options) {
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         // A new job starts once this window frame is drawn (before the swap, which may
         // wait for the display): with a software OpenGL (Mesa's llvmpipe, as under
-        // Xvfb) the frame's drawing otherwise ran on the render's cores while it
-        // started, and the frame's render time was a fifth longer on two threads
+        // Xvfb) the frame's drawing otherwise runs on the render's cores while it
+        // starts and slows it (docs/decisions/0010)
         if (v->state.dirty) glFinish();
         submit_if_dirty(*v);
         if (v->screenshot_requested) take_screenshot(*v);

@@ -1,7 +1,7 @@
 // viewer/tone_map.h: the image to 8-bit sRGB for the texture, fast and exact.
 //
-// raylab::to_srgb8 calls exp2 and pow for every channel: about 9 ms for 640x480 on the
-// main thread, a quarter of the render itself. tone_map (raylab/image.h) only grows
+// raylab::to_srgb8 calls exp2 and pow for every channel, on the main thread a large
+// part of a small render. tone_map (raylab/image.h) only grows
 // with L, so for one exposure it is fixed by the 255 values of L where it steps up;
 // ToneMapper finds them once per exposure and then only compares: the same bytes.
 #pragma once

@@ -14,7 +14,7 @@
 
 namespace raylab {
 
-/// Caps (docs/architecture.md, "Input limits").
+/// Caps (docs/input.md, "Input limits").
 constexpr std::size_t kMaxObjBytes = std::size_t(512) << 20;  ///< OBJ: 512 MiB
 constexpr std::size_t kMaxMtlBytes = std::size_t(16) << 20;   ///< MTL: 16 MiB
 constexpr std::size_t kMaxViewBytes = std::size_t(64) << 10;  ///< view file: 64 KiB

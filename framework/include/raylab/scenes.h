@@ -41,7 +41,7 @@ Scene dtu_scene();
 /// becomes rho (the default material's grey, with a warning, for a material without a Kd
 /// line), Ke emission; faces without normals shade flat. Adds a default view that frames
 /// the model and a light above the eye. Every line is checked first (read_input_file,
-/// docs/architecture.md "Input limits"). Throws raylab::Error naming file, line and
+/// docs/input.md "Input limits"). Throws raylab::Error naming file, line and
 /// field. A missing or unreadable MTL file is a warning, not an error: the faces that use
 /// its materials get the default material. One that is read must be valid.
 Scene load_obj(const std::string& path, const LoadProgress& progress = {});
