@@ -8,6 +8,7 @@
 // The student's code runs in this process: it is the student's own code on the student's
 // own machine, and nothing here decides a grade.
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -40,6 +41,7 @@ struct StudentOptions {
     int repeats = 5;     ///< timed passes per kernel (median reported)
     std::vector<double> distances{1.0, 1e2, 1e4, 1e6};
     std::uint64_t seed = 20240601;  ///< raylab-bench's default: the same ray sets
+    int module_timeout = 120;       ///< seconds one module's section may run
 };
 
 const char* const kHelp =
@@ -54,7 +56,8 @@ const char* const kHelp =
     "  --quick       8192 rays per set and 3 repeats (default 32768 and 5)\n"
     "  --rays N      rays per set, 1000 to 10000000\n"
     "  --repeats N   timed passes per kernel, 1 to 100; the median is reported\n"
-    "  --seed N      master seed of the ray sets\n";
+    "  --seed N      master seed of the ray sets\n"
+    "  --module-timeout S  stop when one module's tests run S seconds (default 120)\n";
 
 long parse_number(const char* flag, const char* text, long lo, long hi) {
     char* end = nullptr;
@@ -82,6 +85,9 @@ StudentOptions parse_options(int argc, char** argv) {
             opt.rays = static_cast<int>(parse_number("--rays", value(), 1000, 10000000));
         } else if (a == "--repeats") {
             opt.repeats = static_cast<int>(parse_number("--repeats", value(), 1, 100));
+        } else if (a == "--module-timeout") {
+            opt.module_timeout =
+                static_cast<int>(parse_number("--module-timeout", value(), 1, 86400));
         } else if (a == "--seed") {
             const char* text = value();
             char* end = nullptr;
@@ -268,6 +274,39 @@ void print_plot(const std::string& title, const std::vector<PlotPoint>& points) 
 // ---------------------------------------------------------------------------------------
 // The three modules
 
+// A student's test that never returns would hang the run: a watchdog ends it after
+// --module-timeout seconds in one module's section, naming the module
+int g_module_seconds = 120;
+std::atomic<const char*> g_module{nullptr};
+std::atomic<int> g_module_generation{0};
+
+void start_watchdog() {
+    std::thread([] {
+        int generation = -1, seconds = 0;
+        for (;;) {
+            std::this_thread::sleep_for(std::chrono::seconds(1));
+            const int now = g_module_generation.load();
+            seconds = now == generation ? seconds + 1 : 0;
+            generation = now;
+            const char* module = g_module.load();
+            if (module != nullptr && seconds >= g_module_seconds) {
+                std::fprintf(stderr,
+                             "raylab-student-bench: exercises/%s.cpp has run for %d s: "
+                             "does your test loop forever, or print on every call? "
+                             "(--quick runs fewer rays)\n",
+                             module, g_module_seconds);
+                std::_Exit(3);
+            }
+        }
+    }).detach();
+}
+
+// Marks the start of a module's section for the watchdog
+void entering(const char* module) {
+    g_module.store(module);
+    g_module_generation.fetch_add(1);
+}
+
 constexpr const char* kYours = "yours";
 constexpr const char* kReference = "reference";
 
@@ -278,6 +317,7 @@ void not_started(const char* module, const char* fn) {
 }
 
 void plane_section(const StudentOptions& opt) {
+    entering("03_plane");
     std::printf("## Ray-plane (exercises/03_plane.cpp)\n\n");
     if (!started(3, [] {
             (void)student::intersect_plane(kDown, Plane{Vec3(0, 1, 0), 0});
@@ -310,6 +350,7 @@ void plane_section(const StudentOptions& opt) {
 }
 
 void sphere_section(const StudentOptions& opt) {
+    entering("04_sphere");
     std::printf("## Ray-sphere (exercises/04_sphere.cpp)\n\n");
     if (!started(4, [] {
             (void)student::intersect_sphere(kDown, Sphere{Vec3(0), 0.5f});
@@ -382,6 +423,7 @@ void group_rows(Table& table, const char* set, double D, const std::vector<Group
 }
 
 void triangle_section(const StudentOptions& opt) {
+    entering("05_triangle");
     std::printf("## Ray-triangle (exercises/05_triangle.cpp)\n\n");
     if (!started(5, [] {
             (void)student::intersect_triangle(kDown, Vec3(-1, 0, -1), Vec3(0, 0, 1),
@@ -494,6 +536,8 @@ int main(int argc, char** argv) {
                 "missed: "
                 "the truth hits, the test does not; false hits: the reverse.",
                 opt.rays, opt.repeats));
+        g_module_seconds = opt.module_timeout;
+        start_watchdog();
         plane_section(opt);
         sphere_section(opt);
         triangle_section(opt);

@@ -9,6 +9,8 @@ Usage: check_student_bench.py reference|textbook BENCH
              stub. The plane must say "not started"; "yours" must equal the textbook row
              of the same formulation and show more error than the reference far away;
              the float triangle test must leak through shared edges, the reference not.
+  endless:   a plane test that never returns: with --module-timeout 2 the bench must
+             stop with exit 3 and name exercises/03_plane.cpp.
 """
 import re
 import subprocess
@@ -78,6 +80,13 @@ def check_common(tables, output):
 
 def main():
     mode, bench = sys.argv[1], sys.argv[2]
+    if mode == "endless":
+        run = subprocess.run([bench, "--quick", "--module-timeout", "2"],
+                             capture_output=True, text=True, timeout=60)
+        if run.returncode != 3 or "exercises/03_plane.cpp has run for 2 s" not in run.stderr:
+            fail(f"an endless plane test: exit {run.returncode}, stderr {run.stderr!r}")
+        print("check_student_bench endless: stopped and named the module")
+        return
     run = subprocess.run([bench, "--quick", "--repeats", "1"], capture_output=True,
                          text=True, timeout=600)
     output = run.stdout + run.stderr
