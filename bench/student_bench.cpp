@@ -2,8 +2,8 @@
 // triangle tests (exercises/ as built into raylab_student), beside the reference and the
 // textbook float formulations, on the ray sets of raylab-bench's kernel section.
 //
-//   raylab-student-bench            about 10 s
-//   raylab-student-bench --quick    a few seconds
+//   raylab-student-bench            32768 rays per set
+//   raylab-student-bench --quick    8192 rays per set, fewer repeats
 //
 // The student's code runs in this process: it is the student's own code on the student's
 // own machine, and nothing here decides a grade.
