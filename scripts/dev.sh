@@ -24,6 +24,9 @@
 #                      with the private tests' seed N (scripts/make-gradescope.sh) [instructor]
 #   release [OUT]      make the student release (scripts/make-student-release.sh) [instructor]
 #   bench [ARGS]       build with Embree and run build/bench/raylab-bench ARGS [instructor]
+#   bench --student [--quick]  time your plane, sphere and triangle tests and measure the
+#                      error of their t against the reference's and the textbook's
+#                      (build/bench/raylab-student-bench; --help lists its options)
 #   fuzz [SECONDS]     run each fuzz target SECONDS (default 600) in build-fuzz/ (needs clang)
 #   format             apply clang-format to the tracked C++ sources
 #   clean              delete the build folders this script made (it lists them)
@@ -336,6 +339,12 @@ cmd_release() {
 }
 
 cmd_bench() {
+    if [[ ${1:-} == --student ]]; then
+        shift
+        cmd_student_bench "$@"
+        return
+    fi
+    instructor_only bench
     install_deps build libs bench
     configure "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WITH_EMBREE=ON
     has_target "$BUILD_DIR" raylab-bench ||
@@ -343,6 +352,19 @@ cmd_bench() {
     compile "$BUILD_DIR" raylab-bench
     step "Running $BUILD_DIR/bench/raylab-bench $*"
     "$BUILD_DIR/bench/raylab-bench" "$@"
+}
+
+# The student's own tests against the reference's: also in a student release, which ships
+# the student bench's sources and the compiled reference
+cmd_student_bench() {
+    install_deps build libs
+    configure_everyday
+    has_target "$BUILD_DIR" raylab-student-bench ||
+        die "there is no raylab-student-bench target (it needs bench/ and the reference:" \
+            "solutions/ or reference/libraylab_reference.a)"
+    compile "$BUILD_DIR" raylab-student-bench
+    step "Running $BUILD_DIR/bench/raylab-student-bench $*"
+    "$BUILD_DIR/bench/raylab-student-bench" "$@"
 }
 
 cmd_format() {
@@ -400,7 +422,7 @@ case $command in
     grade-class) cmd_grade_class "$@" ;;
     gradescope) instructor_only "$command"; cmd_gradescope "$@" ;;
     release) instructor_only "$command"; cmd_release "$@" ;;
-    bench) instructor_only "$command"; cmd_bench "$@" ;;
+    bench) cmd_bench "$@" ;;
     fuzz) cmd_fuzz "$@" ;;
     format) cmd_format "$@" ;;
     clean) cmd_clean "$@" ;;

@@ -3,6 +3,8 @@
 #include <imgui_stdlib.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <thread>
 
@@ -274,6 +276,130 @@ void frame_overlay(Viewer& v) {
     ImGui::End();
 }
 
+// The student's geometry modules' share of a frame, estimated: the renderer counts
+// intersection tests but does not time them (a clock read per test would cost more than
+// many tests), so each selected student intersect_* is timed here, once per selection,
+// on rays at a primitive of unit size, and the frame's tests are weighted by the scene's
+// count of each kind of primitive
+struct StudentTestTimes {
+    ModuleSelection selection;
+    bool measured = false;
+    double ns[3] = {NAN, NAN, NAN};  ///< plane, sphere, triangle; NaN: not the student's
+};
+
+constexpr int kTimedRays = 4096;
+volatile float g_timing_sink = 0.0f;  // keeps the timed calls' results alive
+
+// Median ns per call of test(k) for k < kTimedRays, over three passes after a warm-up
+template <class Test>
+double ns_per_test(Test test) {
+    double best[3];
+    for (int pass = -1; pass < 3; ++pass) {
+        const auto start = std::chrono::steady_clock::now();
+        float sum = 0.0f;
+        for (int k = 0; k < kTimedRays; ++k) {
+            if (const auto hit = test(k)) sum += hit->t;
+        }
+        const std::chrono::duration<double, std::nano> took =
+            std::chrono::steady_clock::now() - start;
+        g_timing_sink = sum;
+        if (pass >= 0) best[pass] = took.count() / kTimedRays;
+    }
+    std::sort(best, best + 3);
+    return best[1];
+}
+
+// Rays from above the primitive at (0, 0, 0) aimed at points of [-1.25, 1.25]^2 in y = 0
+std::vector<Ray> timing_rays() {
+    std::vector<Ray> rays;
+    std::uint64_t state = 0x9E3779B97F4A7C15ull;
+    const auto uniform = [&state] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return static_cast<float>(state >> 40) * 0x1p-24f;
+    };
+    for (int k = 0; k < kTimedRays; ++k) {
+        Ray r;
+        r.o = Vec3(4.0f * uniform() - 2.0f, 3.0f + uniform(), 4.0f * uniform() - 2.0f);
+        const Vec3 aim(2.5f * uniform() - 1.25f, 0.0f, 2.5f * uniform() - 1.25f);
+        r.w = glm::normalize(aim - r.o);
+        rays.push_back(r);
+    }
+    return rays;
+}
+
+const StudentTestTimes& student_test_times(const ModuleSelection& selection) {
+    static StudentTestTimes times;
+    if (times.measured && times.selection.impl == selection.impl) return times;
+    times = StudentTestTimes{selection, true, {NAN, NAN, NAN}};
+    ModuleTable table;
+    try {
+        table = ModuleTable::make(selection);
+    } catch (const Error&) {
+        return times;
+    }
+    const std::vector<Ray> rays = timing_rays();
+    if (selection[Module::plane] == Impl::student) {
+        auto volatile fn = table.intersect_plane;
+        const Plane plane{Vec3(0.0f, 1.0f, 0.0f), 0.0f};
+        times.ns[0] = ns_per_test([&](int k) { return fn(rays[k], plane); });
+    }
+    if (selection[Module::sphere] == Impl::student) {
+        auto volatile fn = table.intersect_sphere;
+        const Sphere sphere{Vec3(0.0f), 1.0f};
+        times.ns[1] = ns_per_test([&](int k) { return fn(rays[k], sphere); });
+    }
+    if (selection[Module::triangle] == Impl::student) {
+        auto volatile fn = table.intersect_triangle;
+        const Vec3 a(-1.0f, 0.0f, 1.0f), b(1.0f, 0.0f, 1.0f), c(0.0f, 0.0f, -1.0f);
+        times.ns[2] = ns_per_test([&](int k) { return fn(rays[k], a, b, c); });
+    }
+    return times;
+}
+
+// "your modules (estimate): ..." under the frame's counters, when any geometry module
+// of the frame is the student's
+void student_share(Viewer& v, const FrameStats& st) {
+    const StudentTestTimes& times = student_test_times(v.frames.sent.modules);
+    const Scene& scene = v.state.scene;
+    const double counts[3] = {static_cast<double>(scene.planes.size()),
+                              static_cast<double>(scene.spheres.size()),
+                              static_cast<double>(scene.triangles.size())};
+    double total = 0.0, weighted_ns = 0.0;
+    bool any = false;
+    for (int k = 0; k < 3; ++k) {
+        total += counts[k];
+        if (!std::isnan(times.ns[k])) {
+            weighted_ns += counts[k] * times.ns[k];
+            any = any || counts[k] > 0;
+        }
+    }
+    if (!any || total == 0.0 || st.milliseconds <= 0.0) return;
+    const double ns = weighted_ns / total;  // per test, over all kinds
+    const double student_ms = static_cast<double>(st.intersection_tests) * ns * 1e-6;
+    const double frame_ms = st.milliseconds * std::max(1, st.threads);
+    ImGui::Text("your modules (estimate): %.1f ms of %.1f thread-ms (%.0f %%)",
+                student_ms, frame_ms, 100.0 * student_ms / frame_ms);
+    if (ImGui::IsItemHovered()) {
+        std::string lines;
+        const char* names[3] = {"plane", "sphere", "triangle"};
+        for (int k = 0; k < 3; ++k) {
+            if (!std::isnan(times.ns[k]))
+                lines += "\n  " + std::string(names[k]) + ": " +
+                         std::to_string(static_cast<int>(std::lround(times.ns[k]))) +
+                         " ns per test";
+        }
+        ImGui::SetTooltip(
+            "An estimate, not a measurement: the frame's intersection tests times the "
+            "ns\n"
+            "per test of your geometry modules, timed once here on %d rays at a\n"
+            "primitive of unit size and weighted by the scene's count of each kind:%s\n"
+            "The rest of the frame (BVH, shading, shadows, the reference's modules) is\n"
+            "the remainder. ./scripts/dev.sh bench --student measures your tests on\n"
+            "harder rays.",
+            kTimedRays, lines.c_str());
+    }
+}
+
 void stats_section(Viewer& v) {
     const FrameState& f = v.frames;
     if (f.history_ms.empty()) {
@@ -313,6 +439,7 @@ void stats_section(Viewer& v) {
         stat_row("BVH nodes visited", st.bvh_nodes);
         ImGui::EndTable();
     }
+    student_share(v, st);
     work_skipped(v);
     if (st.non_finite_pixels > 0) {
         ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1.0f), "%llu NaN/Inf pixels (black)",
