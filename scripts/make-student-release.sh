@@ -6,7 +6,9 @@
 #   is an earlier release (it holds .raylab-release).
 #
 # The release is this tree without what students must not have or cannot build: solutions/
-# (the reference), bench/ and tests/stress/ (they measure the reference), tests/e2e/ (it
+# (the reference), bench/ but for the student bench's sources (raylab-student-bench, which
+# measures the student's tests beside the compiled reference) and tests/stress/ (they
+# measure the reference), tests/e2e/ (it
 # makes a release), the instructor guide and the benchmark notes (with the sampling
 # benchmark's plots and CSV); a link to one of those in a page the release keeps becomes
 # plain text. In their place it gets:
@@ -81,6 +83,8 @@ done
 # What never goes to students
 excluded() {
     case $1 in
+        bench/CMakeLists.txt | bench/student_* | bench/kernels.* | bench/kernel_cases.* | \
+            bench/report.* | bench/rng.h) return 1 ;;
         solutions/* | bench/* | tests/stress/* | tests/e2e/* | docs/instructor-guide.md | \
             docs/benchmarks.md | docs/sampling-benchmarks.md | docs/images/sampling-benchmark* | \
             docs/data/* | \
@@ -112,7 +116,8 @@ cp "$RAYLAB_ROOT"/exercises/*.cpp "$OUT/tests/grading/stubs/"
 cp "$RAYLAB_ROOT/scripts/release/README.md" "$OUT/README.md"
 printf 'raylab student release of %s, made %s\n' "$commit" "$(date -u +%Y-%m-%dT%H:%MZ)" \
     >"$OUT/.raylab-release"
-note "$count files; no solutions/, bench/, tests/stress/ or instructor guide"
+note "$count files; no solutions/, bench/ (but the student bench), tests/stress/ or" \
+    "instructor guide"
 
 # A page copied to the release may link a page that stays behind (architecture.md links
 # benchmarks.md): such a link becomes its plain text, so that both trees' links resolve.
@@ -212,7 +217,8 @@ for f in "$OUT"/README.md "$OUT"/docs/handouts/*.md; do
         die "$f mentions what the release does not hold (above)"
     fi
 done
-listed=$(bash "$OUT/scripts/dev.sh" help | grep -E '^  (bench|grade-reference|gradescope|release)( |$)') &&
+listed=$(bash "$OUT/scripts/dev.sh" help | grep -E '^  (bench|grade-reference|gradescope|release)( |$)' |
+    grep -v '^  bench --student ') &&
     die "the release's dev.sh help lists instructor commands: $listed"
 note "links resolve, every stub lists its TODO(student) steps, dev.sh help lists no" \
     "instructor command"
