@@ -10,6 +10,7 @@
 #include "raylab/renderer.h"
 #include "raylab/sample_scenes.h"
 #include "raylab/scenes.h"
+#include "engine_test_data.h"
 #include "test_helpers.h"
 
 using namespace raylab;
@@ -69,7 +70,7 @@ TEST_SUITE("engine") {
             // INFO captures in a lambda, which clang 14 refuses for a structured binding
             const std::string& scene_name = name;
             INFO("scene " << scene_name);
-            (scene.has_face_normals() ? kept : computed) = true;
+            (engine_data(scene).has_face_normals() ? kept : computed) = true;
             const Aabb box = scene.bounds();
             const Vec3 centre = box.centre(), size = box.hi - box.lo;
             Rng rng(77);
@@ -208,7 +209,7 @@ TEST_SUITE("engine") {
         CHECK(rays == 10000);
     }
 
-    // Review of the copy-free engine: commit() cleared the degenerate flags before it
+    // A commit() once cleared the degenerate flags before it
     // had checked every triangle, so one that threw left the old BVH with no flags, and
     // the engine hit the collinear triangle below (NaN normal) where the module path
     // missed it. A commit() that throws now changes nothing
@@ -237,7 +238,7 @@ TEST_SUITE("engine") {
 
     // The same, but before the throwing commit() a triangle was reversed (same box,
     // normal flipped): the module path reads the scene's triangles, so the engine must
-    // not read the normals the last good commit() kept (review: it did)
+    // not read the normals the last good commit() kept
     TEST_CASE(
         "a commit() that throws after a vertex change keeps both paths in agreement") {
         const ModuleTable fast = engine_table(), slow = module_path_table();
@@ -273,7 +274,7 @@ TEST_SUITE("engine") {
         before.v0.y += 0.25f;  // not collinear; the same box around v2
         scene.triangles.push_back(before);
         scene.commit();
-        REQUIRE_FALSE(scene.degenerate(0));
+        REQUIRE_FALSE(engine_data(scene).degenerate(0));
         scene.triangles[0] = kCollinear;
         scene.ambient = -1.0f;
         CHECK_THROWS_AS(scene.commit(), Error);
