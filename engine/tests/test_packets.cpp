@@ -244,7 +244,7 @@ TEST_SUITE("packets in render") {
     }
 }
 
-// ---- Rays chosen to break the packet's bounds -------------------------------
+// ---- Rays chosen to break the packet's bounds -----------------------------------------
 
 namespace packet_bounds {
 

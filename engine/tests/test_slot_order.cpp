@@ -244,8 +244,7 @@ TEST_SUITE("slot order") {
     }
 }
 
-// ---- Against brute force, through edits and failed commits
-// -----------------------------
+// ---- Against brute force, through edits and failed commits ----------------------------
 
 namespace against_brute_force {
 

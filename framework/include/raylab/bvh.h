@@ -165,8 +165,7 @@ class Bvh {
     std::uint32_t root_ = 0;  // a node index, or a leaf for a single small leaf
 };
 
-// ---- The slab test of a node
-// ------------------------------------------------------------
+// ---- The slab test of a node ----------------------------------------------------------
 //
 // Per axis, the ray enters a box at its near plane (lo for a positive direction
 // component, hi for a negative one) and leaves it at the far plane; it meets the box when
@@ -193,8 +192,7 @@ inline int Bvh::hit_children(const Node& n, const Ray& r, const Vec3& inv_w, flo
     return mask;
 }
 
-// ---- The walk
-// ------------------------------------------------------------------------------
+// ---- The walk -------------------------------------------------------------------------
 //
 // A depth-first walk with a stack of the children that wait, each with the distance at
 // which the ray enters its box. Closest hit: the hit children go onto the stack farthest
