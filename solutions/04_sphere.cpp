@@ -14,7 +14,7 @@ namespace raylab::reference {
 /// A ray that starts on or a few ulps off the sphere (a shadow ray leaving it, handout 08
 /// §3) must see c = |f|^2 - r^2 > 0 and, leaving tangentially, disc < 0: in float their
 /// rounding (ulps of |f|^2 and r^2) exceeds those few ulps where the sphere passes near
-/// the origin (issue 8, B5). Such rays (|c| within 2^-16 of |f|^2 + r^2) take the same
+/// the origin. Such rays (|c| within 2^-16 of |f|^2 + r^2) take the same
 /// steps with f = o - c exact and the coefficients in double; all others stay in float.
 std::optional<Hit> intersect_sphere(const Ray& r, const Sphere& sphere) {
     // Half-coefficients of t^2 + 2 b t + c = 0, with f = o - c

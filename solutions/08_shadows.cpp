@@ -12,7 +12,7 @@ namespace raylab::reference {
 /// is. The ray starts eps = 4 delta off the surface on the light's side, ignores t < eps
 /// (inside corners), and stops short of the light by the rounding error of the light's
 /// position as x + r wi. No absolute margin: an occluder a few times delta above the
-/// surface casts its shadow (issue 8, B5).
+/// surface casts its shadow.
 bool in_shadow(const Occluder& scene, const Vec3& x, const Vec3& n,
                const LightSample& sample) {
     constexpr float ulp = std::numeric_limits<float>::epsilon();  // 2^-23

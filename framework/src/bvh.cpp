@@ -379,10 +379,6 @@ void Bvh::build(const std::vector<Aabb>& boxes, unsigned threads) {
         nodes_ = join(*out);
     }
     // The root's output comes first, and the root is its first node
-
-    // Large trees on huge pages (a random ray's node loads missed the TLB)
-    back_with_huge_pages(nodes_.data(), nodes_.size() * sizeof(Node));
-    back_with_huge_pages(prims_.data(), prims_.size() * sizeof(std::uint32_t));
 }
 
 int Bvh::depth() const {

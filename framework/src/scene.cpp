@@ -18,6 +18,9 @@ namespace raylab {
 
 namespace {
 
+// The engine whose prepare() commit() calls (register_geometry_engine)
+const GeometryEngine* registered_engine = nullptr;
+
 std::string str(const Vec3& v) {
     char buf[96];
     std::snprintf(buf, sizeof buf, "(%g, %g, %g)", v.x, v.y, v.z);
@@ -25,7 +28,7 @@ std::string str(const Vec3& v) {
 }
 
 // c - r and c + r rounded outwards (one step from the nearest float): the box holds the
-// exact sphere even when it is small and far from the origin (issue 8, B3)
+// exact sphere even when it is small and far from the origin
 Aabb sphere_box(const Sphere& s) {
     const auto down = [](float x) { return std::nextafter(x, -kInfinity); };
     const auto up = [](float x) { return std::nextafter(x, kInfinity); };
@@ -123,8 +126,7 @@ void validate(const View& view) {
 void Scene::commit() {
     // Until this commit() succeeds, the queries call the modules: one that throws leaves
     // the last good BVH, but the triangles may have changed since, and the engine's
-    // degenerate flags and normals would be the old triangles' (review: after a vertex
-    // change and a commit() that threw, the engine returned the old normal)
+    // data (degenerate flags, normals) would be the old triangles'.
     committed_ = false;
     const int material_count = static_cast<int>(materials.size());
     const auto check_material = [&](int m, const std::string& what) {
@@ -164,11 +166,6 @@ void Scene::commit() {
         throw Error("vertex normals: " + std::to_string(normals.size()) +
                     " entries for " + std::to_string(triangles.size()) +
                     " triangles (none, or one per triangle)");
-    // The flags replace the scene's only once the whole scene is valid: a commit() that
-    // throws leaves the last good state (BVH and flags) in place
-    std::vector<bool> degenerate;
-    std::vector<Vec3> face_normals(triangles.size() <= kFaceNormalsUpTo ? triangles.size()
-                                                                        : 0);
     for (size_t k = 0; k < triangles.size(); ++k) {
         const SceneTriangle& t = triangles[k];
         const std::string what = "triangle " + std::to_string(triangle_source(k));
@@ -181,15 +178,6 @@ void Scene::commit() {
         }
         check_material(t.material, what);
         boxes.push_back(triangle_box(t));
-        // A unit normal in double has a component of at least 1/sqrt(3): zero only when
-        // degenerate
-        const Vec3 n = unit_normal(t);
-        if (n == Vec3(0.0f)) {
-            degenerate.resize(triangles.size());
-            degenerate[k] = true;
-        } else if (!face_normals.empty()) {
-            face_normals[k] = n;
-        }
     }
     for (size_t k = 0; k < lights.size(); ++k) {
         if (!is_finite(lights[k].p) || !is_finite(lights[k].I))
@@ -199,38 +187,22 @@ void Scene::commit() {
     if (!std::isfinite(ambient) || ambient < 0.0f)
         throw Error("ambient term must be finite and non-negative");
     bvh_.build(boxes);
-    store_in_slot_order(degenerate, face_normals);
-    back_with_huge_pages(triangles.data(), triangles.size() * sizeof(SceneTriangle));
-    std::vector<SlotPrimitive> slots;
-    if (boxes.size() <= kSlotCopyUpTo) {
-        const std::uint32_t sphere_count = static_cast<std::uint32_t>(spheres.size());
-        slots.reserve(boxes.size());
-        for (const std::uint32_t p : bvh_.prims()) {
-            SlotPrimitive s{};
-            if (p < sphere_count) {
-                s.a = spheres[p].sphere.c;
-                s.b = DVec3(spheres[p].sphere.r, 0.0, 0.0);
-                s.prim = p | SlotPrimitive::kSphere;
-            } else {
-                const SceneTriangle& t = triangles[p - sphere_count];
-                s.a = DVec3(t.v0), s.b = DVec3(t.v1), s.c = DVec3(t.v2);
-                const bool flat = !degenerate.empty() && degenerate[p - sphere_count];
-                s.prim = p | (flat ? SlotPrimitive::kDegenerate : 0u);
-            }
-            slots.push_back(s);
-        }
-    }
-    degenerate_ = std::move(degenerate);
-    face_normals_ = std::move(face_normals);
-    slots_ = std::move(slots);
+    store_in_slot_order();
+    // The engine's data is the new scene's or none: a prepare() that throws leaves none
+    engine_data_.reset();
+    data_engine_ = registered_engine;
+    if (data_engine_) engine_data_ = data_engine_->prepare(*this);
     committed_ = true;
 }
 
-// The triangles, their normals and flags moved into the BVH's slot order, and the BVH's
-// names for them changed to match; source_ follows each triangle to the index it was
-// added at
-void Scene::store_in_slot_order(std::vector<bool>& degenerate,
-                                std::vector<Vec3>& face_normals) {
+void register_geometry_engine(const GeometryEngine* engine) {
+    registered_engine = engine;
+}
+
+// The triangles and their normals moved into the BVH's slot order, and the BVH's names
+// for them changed to match (a leaf's triangles then lie side by side in memory);
+// source_ follows each triangle to the index it was added at
+void Scene::store_in_slot_order() {
     forget_removed_sources();
     const std::uint32_t sphere_count = static_cast<std::uint32_t>(spheres.size());
     // Triangle k's place in slot order: order[j] is the triangle in the j-th triangle
@@ -257,8 +229,6 @@ void Scene::store_in_slot_order(std::vector<bool>& degenerate,
     };
     auto moved_triangles = gathered(triangles);
     auto moved_normals = gathered(normals);
-    auto moved_degenerate = gathered(degenerate);
-    auto moved_face_normals = gathered(face_normals);
     std::vector<std::uint32_t> source(order.size());
     std::vector<std::uint32_t> name(sphere_count + order.size());
     for (std::uint32_t k = 0; k < sphere_count; ++k)
@@ -276,8 +246,6 @@ void Scene::store_in_slot_order(std::vector<bool>& degenerate,
     next_source_ = static_cast<std::uint32_t>(afresh ? triangles.size() : handed);
     triangles.swap(moved_triangles);
     normals.swap(moved_normals);
-    degenerate.swap(moved_degenerate);
-    face_normals.swap(moved_face_normals);
     source_.swap(source);
     bvh_.rename(name);
 }
@@ -290,7 +258,8 @@ Aabb Scene::bounds() const {
 // the last commit() succeeded
 const GeometryEngine* Scene::engine_for(const ModuleTable& m) const {
     const GeometryEngine* e = m.engine;
-    if (committed_ && e && m.intersect_plane == e->intersect_plane &&
+    if (committed_ && e && e == data_engine_ && engine_data_ &&
+        m.intersect_plane == e->intersect_plane &&
         m.intersect_sphere == e->intersect_sphere &&
         m.intersect_triangle == e->intersect_triangle)
         return e;

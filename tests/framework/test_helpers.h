@@ -14,6 +14,7 @@
 #include <doctest/doctest.h>
 
 #include "raylab/contract.h"
+#include "raylab/engine.h"
 #include "raylab/modules.h"
 #include "raylab/renderer.h"
 #include "raylab/scene.h"
@@ -43,6 +44,12 @@ inline const ModuleTable& reference_modules() {
         return t;
     }();
     return table;
+}
+
+/// True when this build has the geometry engine (RAYLAB_WITH_ENGINE, engine/README.md):
+/// what only the engine does (packets, camera rays traced ahead) is tested only then.
+inline bool engine_built() {
+    return reference::geometry_engine() != nullptr;
 }
 
 /// Both paths side by side, whatever RAYLAB_TEST_PATH says: the reference's table with

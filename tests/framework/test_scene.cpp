@@ -107,47 +107,6 @@ TEST_SUITE("scene") {
             s.commit(), doctest::Contains("triangle 0: vertex is not finite"), Error);
     }
 
-    TEST_CASE("commit keeps the module's triangle normals in small scenes only") {
-        // Small: every normal as the reference module returns it, bit for bit (the
-        // engine reads them instead), and zero for a degenerate triangle
-        Scene small = random_scene(5, 0, 300);
-        small.triangles.push_back({Vec3(1.0f), Vec3(2.0f), Vec3(3.0f), 0});  // collinear
-        small.commit();
-        REQUIRE(small.has_face_normals());
-        const ModuleTable& m = reference_modules();
-        int compared = 0;
-        for (size_t k = 0; k < small.triangles.size(); ++k) {
-            const SceneTriangle& t = small.triangles[k];
-            if (small.degenerate(k)) {
-                CHECK(small.face_normal(k) == Vec3(0.0f));
-                continue;
-            }
-            // A ray at the centroid along the normal's reverse meets the triangle
-            const Vec3 c = (t.v0 + t.v1 + t.v2) / 3.0f, n = face_normal(t);
-            const auto hit =
-                m.intersect_triangle(Ray{c + n, -n, 0.0f, kInfinity}, t.v0, t.v1, t.v2);
-            if (!hit) continue;
-            CHECK(small.face_normal(k) == hit->n);
-            ++compared;
-        }
-        // The collinear triangle, added 301st, wherever commit() has moved it
-        size_t collinear = 0;
-        while (small.triangle_source(collinear) != 300)
-            ++collinear;
-        CHECK(small.degenerate(collinear));
-        CHECK(compared > 250);
-        // BVH, source indices, flags, normals and the slot copy
-        const size_t n = small.triangles.size(), flags = (n + 7) / 8;
-        CHECK(small.acceleration_bytes() == small.bvh().bytes() + 4 * n + flags + 12 * n +
-                                                sizeof(Scene::SlotPrimitive) * n);
-        // Large: none kept (the array would miss the cache), and no bytes counted
-        const Scene large = random_scene(6, 0, int(Scene::kFaceNormalsUpTo) + 1);
-        CHECK_FALSE(large.has_face_normals());
-        CHECK(random_scene(6, 0, int(Scene::kFaceNormalsUpTo)).has_face_normals());
-        CHECK(large.acceleration_bytes() <=
-              large.bvh().bytes() + 5 * large.triangles.size());
-    }
-
     TEST_CASE("vertex normals from an OBJ file shade smooth triangles, and only those") {
         // Two triangles of the plane z = 0; the first has vertex normals tilted towards
         // +x, the second none (flat)

@@ -5,13 +5,21 @@
 // primitive. When the table selects the reference for planes, spheres and triangles,
 // they hand the whole query to the engine instead: the same BVH traversal with the
 // reference's tests inlined, computing only t (and, for an accepted triangle, its
-// normal and uv), and the Hit built once, for the nearest primitive. The engine lives in
-// the reference library (solutions/engine_geometry.cpp), which ships compiled only, so
-// its copy of the reference's numerics is not readable source in a student release;
-// ModuleTable::make (the glue, linked with the reference) puts it in the table.
+// normal and uv), and the Hit built once, for the nearest primitive. The engine
+// (engine/, its README says why it exists) is compiled into the reference library,
+// which ships compiled only, so its copy of the reference's numerics is not readable
+// source in a student release; ModuleTable::make (the glue, linked with the reference)
+// puts it in the table. A build without it (RAYLAB_WITH_ENGINE=OFF) gives the same
+// images from the module path.
+//
+// The engine keeps what it reads besides the scene's own data (flags, normals, copies in
+// the BVH's order) in an EngineData of its own, which Scene::commit() asks the
+// registered engine to prepare (GeometryEngine::prepare) and the scene holds for it.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <memory>
 
 #include "raylab/contract.h"
 
@@ -30,12 +38,26 @@ struct PrimRef {
     bool refined = false;
 };
 
+/// What an engine prepares from a committed scene and reads in its queries: its own
+/// type, opaque to the scene, which keeps it until the next commit() (copies of the
+/// scene share it: it holds no pointer into the scene).
+struct EngineData {
+    virtual ~EngineData() = default;
+    /// Bytes it holds (Scene::acceleration_bytes counts them).
+    virtual size_t bytes() const = 0;
+};
+
 struct GeometryEngine {
     /// The module functions whose results the engine reproduces: the scene uses the
     /// engine only when the table holds exactly these.
     decltype(&student::intersect_plane) intersect_plane;
     decltype(&student::intersect_sphere) intersect_sphere;
     decltype(&student::intersect_triangle) intersect_triangle;
+    /// The engine's data for scene, called by scene.commit() once it has validated the
+    /// scene, built its BVH and put its triangles in the BVH's slot order; null: none
+    /// (the scene's queries then call the modules). The queries below find it in
+    /// scene.engine_data().
+    std::shared_ptr<const EngineData> (*prepare)(const Scene& scene);
     /// prim: the primitive whose hit the module path would return, counting the same
     /// tests (kind none when there is none); when there is one, hit holds what its
     /// module returns (t, position, n, uv), or with PrimRef::refined the refined position
@@ -67,9 +89,32 @@ struct GeometryEngine {
     const char* versions;
 };
 
+/// Makes engine the one whose prepare() every later Scene::commit() calls (null: none).
+/// The reference library registers its engine before main() when it has one.
+void register_geometry_engine(const GeometryEngine* engine);
+
 namespace reference {
-/// The reference's engine; defined in the reference library.
+/// The reference's engine, or null in a build without one; defined in the reference
+/// library.
 const GeometryEngine* geometry_engine();
 }  // namespace reference
+
+/// Arrays from this size on are backed by huge pages (back_with_huge_pages).
+inline constexpr size_t kHugePagesFrom = size_t{4} << 20;
+
+/// Asks the kernel to back the huge pages (2 MiB on x86-64) lying wholly inside
+/// [data, data + bytes) with huge pages, when bytes >= kHugePagesFrom: on Linux,
+/// madvise(MADV_HUGEPAGE) for the range, then MADV_COLLAPSE (kernel 6.1 on; retried on
+/// EAGAIN) to do it at once instead of whenever khugepaged comes by. The engine asks it
+/// for the BVH's nodes and primitive order and the scene's triangles when it prepares a
+/// scene: a random ray through a million-triangle mesh loads nodes and triangles from
+/// tens of megabytes, and with 4 KiB pages nearly every one of those loads also missed
+/// the TLB. Only a hint: the data is unchanged, and a kernel that declines (built
+/// without transparent huge pages, older than 6.1, short of free memory) leaves the
+/// pages as they are. The collapse is synchronous: on a machine short of free huge
+/// pages it may compact memory first, and commit() waits for it. MADV_COLLAPSE does not
+/// depend on the system's transparent huge page mode. Returns true when the kernel
+/// collapsed the range now. Defined with the engine (false in a build without one).
+bool back_with_huge_pages(const void* data, size_t bytes);
 
 }  // namespace raylab

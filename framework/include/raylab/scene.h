@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -136,9 +137,9 @@ class Scene {
     /// BVH. Call after every geometry change; camera and light changes need no rebuild.
     /// Throws raylab::Error naming the first bad element; the scene then keeps its last
     /// good BVH, and its queries call the modules (no engine) until a commit() succeeds.
-    /// The reference's engine reads what commit() keeps (normals, the slot copy): after
-    /// an edit without a commit() it would see the last committed geometry, the module
-    /// path the new one.
+    /// The registered geometry engine then prepares its own data from the scene
+    /// (engine_data): after an edit without a commit() it would see the last committed
+    /// geometry, the module path the new one.
     void commit();
 
     /// Bounds of spheres and triangles (planes excluded); empty box when there are none.
@@ -174,58 +175,16 @@ class Scene {
 
     const Bvh& bvh() const { return bvh_; }
 
-    /// True for triangle k when its normal (v1 - v0) x (v2 - v0), in double, has no
-    /// length: the contract says such a triangle is never hit, and the reference's engine
-    /// refuses it by this flag, set by commit(), instead of computing the normal.
-    bool degenerate(size_t k) const { return !degenerate_.empty() && degenerate_[k]; }
-
-    /// Triangles up to which commit() keeps every triangle's normal (face_normal): the
-    /// array, 12 bytes a triangle, then stays in the cache.
-    static constexpr size_t kFaceNormalsUpTo = size_t{1} << 14;
-
-    /// True when commit() kept the triangles' normals: a scene of at most
-    /// kFaceNormalsUpTo triangles. The reference's engine reads its nearest hit's normal
-    /// there instead of computing it (a square root and a division, a tenth of a Cornell
-    /// box camera ray); in a larger scene an incoherent ray's read of it missed the
-    /// cache (random rays through a 400,000-triangle mesh lost a sixth of their speed),
-    /// and the engine computes it from the vertices its test has just read.
-    bool has_face_normals() const { return !face_normals_.empty(); }
-
-    /// Unit normal of triangle k as the contract defines hit.n: (v1 - v0) x (v2 - v0) in
-    /// double, divided by its length, rounded to float; zero when degenerate(k). Only
-    /// when has_face_normals().
-    const Vec3& face_normal(size_t k) const { return face_normals_[k]; }
-
-    /// A BVH slot's primitive as the reference's engine reads it in a small scene: a
-    /// triangle's vertices (a, b, c), or a sphere's centre (a) and radius (b.x), in
-    /// double (exactly the float values, converted once instead of at every test); prim
-    /// names the primitive as the BVH does (spheres first, then triangles), with
-    /// kSphere set for a sphere and kDegenerate for a degenerate triangle. 80 bytes.
-    struct SlotPrimitive {
-        static constexpr std::uint32_t kSphere = 0x80000000u;
-        static constexpr std::uint32_t kDegenerate = 0x40000000u;
-        static constexpr std::uint32_t kIndexMask = kDegenerate - 1;
-        DVec3 a, b, c;
-        std::uint32_t prim;
-    };
-    /// Spheres and triangles up to which commit() keeps a copy of them in the BVH's
-    /// slot order (slot_primitives, at most 320 KiB): the engine's single-ray queries
-    /// then read a leaf's primitives side by side, with no load of the primitive order
-    /// before each (Cornell box camera rays 6 % faster, raylab-bench's driver). A larger
-    /// scene keeps none: memory per triangle stays what the BVH and the mesh need.
-    static constexpr size_t kSlotCopyUpTo = size_t{1} << 12;
-    /// The copy, one SlotPrimitive per BVH slot, or nullptr (a larger scene).
-    const SlotPrimitive* slot_primitives() const {
-        return slots_.empty() ? nullptr : slots_.data();
-    }
+    /// The data the registered geometry engine prepared at the last successful commit()
+    /// (raylab/engine.h: GeometryEngine::prepare), for the engine's queries; null when
+    /// there is none (no engine, or no commit() yet).
+    const EngineData* engine_data() const { return engine_data_.get(); }
 
     /// Bytes of the acceleration data: BVH nodes, primitive order, the triangles' source
-    /// indices, the degenerate flags, the face normals and the slot copy (otherwise the
-    /// engine reads spheres and triangles from the scene's own vectors).
+    /// indices and the engine's data.
     size_t acceleration_bytes() const {
         return bvh_.bytes() + source_.size() * sizeof(std::uint32_t) +
-               (degenerate_.size() + 7) / 8 + face_normals_.size() * sizeof(Vec3) +
-               slots_.size() * sizeof(SlotPrimitive);
+               (engine_data_ ? engine_data_->bytes() : 0);
     }
 
   private:
@@ -234,8 +193,7 @@ class Scene {
     std::optional<Hit> engine_closest_hit(const GeometryEngine& engine, const Ray& r,
                                           TraceCounters& counters) const;
 
-    void store_in_slot_order(std::vector<bool>& degenerate,
-                             std::vector<Vec3>& face_normals);
+    void store_in_slot_order();
     // Triangles cleared or cut since the last commit(): their sources go with them (and
     // the count of names starts again once none is left)
     void forget_removed_sources() {
@@ -248,11 +206,11 @@ class Scene {
     // Names handed out to the triangles in source_: those after it follow on from this
     std::uint32_t next_source_ = 0;
     static constexpr std::uint64_t kLastSource = 0xffffffffu;  // the largest name kept
-    friend struct SceneTestAccess;    // tests/framework: the count of names near its end
-    std::vector<bool> degenerate_;    // by triangle; empty when none is degenerate
-    std::vector<Vec3> face_normals_;  // by triangle, or empty (has_face_normals)
-    std::vector<SlotPrimitive> slots_;  // by BVH slot, or empty (slot_primitives)
-    bool committed_ = false;            // the last commit() succeeded: the engine may run
+    friend struct SceneTestAccess;  // tests/framework: the count of names near its end
+    // The engine that prepared engine_data_ at the last successful commit(), and its data
+    const GeometryEngine* data_engine_ = nullptr;
+    std::shared_ptr<const EngineData> engine_data_;
+    bool committed_ = false;  // the last commit() succeeded: the engine may run
 };
 
 /// The Occluder the shadow module receives: the scene's any-hit query, counted, with

@@ -1,9 +1,10 @@
-// raylab/simd.h: whether the SSE2 paths of the framework (the BVH's slab tests and build)
-// and of the reference (the triangle test; in its engine, the hit point's shared
-// coordinates) are compiled. Every x86-64 compiler has SSE2; with RAYLAB_NO_SIMD defined,
-// or on another architecture, each takes its scalar twin, which gives the same results.
-// CI builds the stress suite and the framework's unit tests both ways
-// (scripts/stress-matrix.sh), so neither twin goes untested.
+// raylab/simd.h: whether the SSE2 paths of the BVH's build (framework/src) and of the
+// geometry engine (engine/: its node tests and walks, the hit point's shared coordinates)
+// are compiled. Every x86-64 compiler has SSE2; with RAYLAB_NO_SIMD defined, or on
+// another architecture, each takes its scalar twin, which gives the same results. CI
+// builds the stress suite and the unit tests both ways (scripts/stress-matrix.sh), so
+// neither twin goes untested. The teaching path (raylab/bvh.h's walk, solutions/) has
+// no SIMD.
 #pragma once
 
 #if defined(__SSE2__) && !defined(RAYLAB_NO_SIMD)

@@ -1,10 +1,10 @@
-// back_with_huge_pages (raylab/bvh.h): the BVH's and the scene's large arrays on huge
+// back_with_huge_pages (raylab/engine.h): the BVH's and the scene's large arrays on huge
 // pages.
 #include <cerrno>
 #include <cstdint>
 #include <fstream>
 
-#include "raylab/bvh.h"
+#include "raylab/engine.h"
 
 #if defined(__linux__)
 #include <sys/mman.h>

@@ -10,6 +10,8 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "engine_data.h"
+#include "engine_walk.h"
 #include "raylab/engine.h"
 #include "raylab/refine.h"  // unit_normal
 #include "raylab/scene.h"
@@ -28,8 +30,8 @@ inline float plane_t(const Ray& r, const Plane& plane, float tmax) {
     return t;
 }
 
-// intersect_sphere's t (Ray Tracing Gems ch. 7; rays starting on the sphere in double,
-// issue 8 B5), or NaN
+// intersect_sphere's t (Ray Tracing Gems ch. 7; rays starting on the sphere in double),
+// or NaN
 inline float sphere_t(const Ray& r, const Vec3& centre, float radius, float tmax) {
     const Vec3 f = r.o - centre;
     const float rr = radius * radius, ff = glm::dot(f, f);
@@ -178,9 +180,9 @@ inline float triangle_t(const Ray& r, const WoopRay& q, const V& v0, const V& v1
     const double dt =
         3 * (gamma(3) * max_e * max_z + de * max_z + dz * max_e) * std::abs(inv_det);
     if (!(td > dt)) return NAN;
-    // The module also refuses a triangle whose normal has no length: the scene marks
-    // those at commit() (Scene::degenerate); the nearest hit's normal is computed once,
-    // or read from the scene (Scene::face_normal)
+    // The module also refuses a triangle whose normal has no length: the engine marks
+    // those when it prepares the scene (SceneData::degenerate); the nearest hit's normal
+    // is computed once, or read from its data (SceneData::face_normal)
     if (degenerate) return NAN;
     extra.uv = Vec2(static_cast<float>(e1 * inv_det), static_cast<float>(e2 * inv_det));
     extra.td = td;
@@ -195,14 +197,14 @@ struct Primitives {
     const SceneSphere* spheres;
     const SceneTriangle* triangles;
     std::uint32_t sphere_count;
-    const Scene& scene;
+    const SceneData& data;
 
     explicit Primitives(const Scene& s)
         : order(s.bvh().prims().data()),
           spheres(s.spheres.data()),
           triangles(s.triangles.data()),
           sphere_count(static_cast<std::uint32_t>(s.spheres.size())),
-          scene(s) {}
+          data(scene_data(s)) {}
 
     // t of the primitive in slot s, or NaN
     __attribute__((always_inline)) float t(const Ray& r, const WoopRay& q,
@@ -217,7 +219,7 @@ struct Primitives {
         // The flag is read for every test, not only for one that passes: its load then
         // overlaps the test (read last, Cornell box random rays were 2 % slower)
         const SceneTriangle& tri = triangles[k];
-        return triangle_t(r, q, tri.v0, tri.v1, tri.v2, scene.degenerate(k), tmax, extra);
+        return triangle_t(r, q, tri.v0, tri.v1, tri.v2, data.degenerate(k), tmax, extra);
     }
     // The primitive in slot s, as the BVH names it
     std::uint32_t prim(std::uint32_t s) const { return order[s]; }
@@ -230,9 +232,10 @@ struct Primitives {
 struct SlotOrderTriangles {
     const SceneTriangle* triangles;
     const Scene& scene;
+    const SceneData& data;
 
     explicit SlotOrderTriangles(const Scene& s)
-        : triangles(s.triangles.data()), scene(s) {
+        : triangles(s.triangles.data()), scene(s), data(scene_data(s)) {
         assert(s.spheres.empty());
     }
     // t of the triangle in slot s, or NaN
@@ -241,30 +244,31 @@ struct SlotOrderTriangles {
                                            TriangleExtra& extra) const {
         assert(scene.bvh().prims()[s] == s);
         const SceneTriangle& tri = triangles[s];
-        return triangle_t(r, q, tri.v0, tri.v1, tri.v2, scene.degenerate(s), tmax, extra);
+        return triangle_t(r, q, tri.v0, tri.v1, tri.v2, data.degenerate(s), tmax, extra);
     }
     std::uint32_t prim(std::uint32_t s) const { return s; }
 };
 
-// The same tests read from the scene's copy of its primitives in slot order
-// (Scene::slot_primitives), in scenes small enough to keep one: a leaf's primitives lie
-// side by side, and no load of the order comes before each
+// The same tests read from the engine's copy of the primitives in slot order
+// (SceneData::slot_primitives), in scenes small enough to keep one: a leaf's primitives
+// lie side by side, and no load of the order comes before each
 struct SlotPrimitives {
-    const Scene::SlotPrimitive* slots;
+    const SceneData::SlotPrimitive* slots;
 
     // t of the primitive in slot s, or NaN
     __attribute__((always_inline)) float t(const Ray& r, const WoopRay& q,
                                            std::uint32_t s, float tmax,
                                            TriangleExtra& extra) const {
-        const Scene::SlotPrimitive& p = slots[s];
-        if (p.prim & Scene::SlotPrimitive::kSphere)
+        const SceneData::SlotPrimitive& p = slots[s];
+        if (p.prim & SceneData::SlotPrimitive::kSphere)
             return sphere_t(r, Vec3(p.a), float(p.b.x), tmax);
         return triangle_t(r, q, p.a, p.b, p.c,
-                          (p.prim & Scene::SlotPrimitive::kDegenerate) != 0, tmax, extra);
+                          (p.prim & SceneData::SlotPrimitive::kDegenerate) != 0, tmax,
+                          extra);
     }
     // The primitive in slot s, as the BVH names it
     std::uint32_t prim(std::uint32_t s) const {
-        return slots[s].prim & Scene::SlotPrimitive::kIndexMask;
+        return slots[s].prim & SceneData::SlotPrimitive::kIndexMask;
     }
 };
 
@@ -325,8 +329,8 @@ inline void finish_hit(const Scene& scene, const Primitives& prims, const Ray& r
     }
     const std::uint32_t k = p - prims.sphere_count;
     const SceneTriangle& tri = prims.triangles[k];
-    // intersect_triangle's normal: commit()'s, where the scene keeps it
-    hit.n = scene.has_face_normals() ? scene.face_normal(k) : unit_normal(tri);
+    // intersect_triangle's normal: the engine's, where it keeps one
+    hit.n = prims.data.has_face_normals() ? prims.data.face_normal(k) : unit_normal(tri);
     hit.uv = best_extra.uv;
     // The hit point from t in double, when its error bound (pbrt-v4's deltaT, above)
     // shows it within 2^-30 of its size of the exact intersection of the ray with the
@@ -342,11 +346,10 @@ inline void finish_hit(const Scene& scene, const Primitives& prims, const Ray& r
     };
     // deltaT bounds the error of t only for |w| <= 1: its shear terms take z after the
     // division by w_kz, and the rounding of the shear, about 3u |z| before it, is missed
-    // when |w_kz| > 1 (review: a ray with |w| = 1e6 was 2592 deltaT off). Ray::w is
+    // when |w_kz| > 1 (a ray with |w| = 1e6 was thousands of deltaT off). Ray::w is
     // unit by contract; a longer one takes the scene's refinement. deltaT also leaves
     // out the determinant's own rounding, which can make it up to twice too small: it
-    // counts twice here (the review's largest error over deltaT in 27,000 exact cases
-    // was 0.09)
+    // counts twice here
     const double W = max_abs(w);
     const bool refined =
         W <= 1.0 &&

@@ -50,20 +50,20 @@
 // engine stores the chosen versions in its GeometryEngine when it is first asked for, so
 // a query pays no choice per call. flatten asks the compiler to inline every call of a
 // version, so that the query is compiled for the version's target; it does not always
-// (objdump, 2026-11-27: GCC keeps the any-hit query's leaf visit a function of its own,
-// compiled for the baseline, and clang keeps Bvh::place_sorted_avx out of line, compiled
+// (objdump: GCC keeps the any-hit query's leaf visit a function of its own,
+// compiled for the baseline, and clang keeps place_sorted_avx out of line, compiled
 // for AVX2), which costs speed, never results. Avx lets a query use instructions that
-// only the AVX2 versions may (the AVX node test of Bvh::traverse<true>). The AVX-512
-// version uses no 512-bit vector of its own: what it gains is the compiler's 32 vector
-// registers instead of 16. The query inlined whole needs more than 16 (the walk's ray,
-// the watertight test's shear and its nine coordinates): GCC's AVX2 closest-hit query
-// moves vector registers to and from the stack in 363 instructions, its AVX-512 one in
-// 234, and Cornell box camera and random rays took 4-5 % less time (eleven alternations
-// of the two versions, 51.6 against 49.2 and 89.7 against 86.2 ns). A build for a target
-// with AVX2 (-march=native here) has one version, with Avx = true, and the registers its
-// target has. The environment variable RAYLAB_NO_AVX2 (any value) makes the choice the
-// baseline and RAYLAB_NO_AVX512 at most AVX2, so that tests can run every version on one
-// machine (scripts/stress-matrix.sh and tests/framework's ctest runs do).
+// only the AVX2 versions may (the AVX node test of walk<Sorted, true>, engine_walk.h).
+// The AVX-512 version uses no 512-bit vector of its own: what it gains is the compiler's
+// 32 vector registers instead of 16. The query inlined whole needs more than 16 (the
+// walk's ray, the watertight test's shear and its nine coordinates): GCC's AVX2
+// closest-hit query moves vector registers to and from the stack in 363 instructions, its
+// AVX-512 one in 234, and Cornell box camera and random rays took 4-5 % less time (eleven
+// alternations of the two versions, 51.6 against 49.2 and 89.7 against 86.2 ns). A build
+// for a target with AVX2 (-march=native here) has one version, with Avx = true, and the
+// registers its target has. The environment variable RAYLAB_NO_AVX2 (any value) makes the
+// choice the baseline and RAYLAB_NO_AVX512 at most AVX2, so that tests can run every
+// version on one machine (scripts/stress-matrix.sh and tests/framework's ctest runs do).
 #if RAYLAB_ENGINE_AVX2
 #define RAYLAB_ENGINE_VERSIONS(QUERY, RESULT, NAME, PARAMS, ARGS)                \
     __attribute__((flatten)) RESULT NAME##_baseline PARAMS {                     \

@@ -1,13 +1,13 @@
-// Scenes of many mixed primitives near a size limit of what commit() keeps for the
-// reference's engine (the face normals, the slot copy), the comparison of the engine
-// with the module path on them, and the check of the slot copy: test_face_normals.cpp,
-// test_slot_copy.cpp and test_slot_copy_adversarial.cpp.
+// Scenes of many mixed primitives near a size limit of what the engine keeps (the face
+// normals, the slot copy), the comparison of the engine with the module path on them,
+// and the check of the slot copy: test_face_normals.cpp and test_slot_copy.cpp.
 #pragma once
 
 #include <cmath>
 #include <vector>
 
 #include "raylab/scene.h"
+#include "engine_test_data.h"
 #include "test_helpers.h"
 
 namespace raylab {
@@ -51,7 +51,7 @@ inline Scene boundary_scene(std::uint64_t seed, int n, std::vector<Vec3>& target
     }
     scene.commit();
     for (size_t k = 0; k < scene.triangles.size(); ++k) {
-        if (scene.degenerate(k)) continue;
+        if (engine_data(scene).degenerate(k)) continue;
         const SceneTriangle& t = scene.triangles[k];
         targets.push_back(t.v0 + 0.3f * (t.v1 - t.v0) + 0.3f * (t.v2 - t.v0));
     }
@@ -81,7 +81,7 @@ inline void compare_paths(const Scene& scene, const std::vector<Vec3>& targets,
 
 // Every slot holds, to the bit, the primitive the BVH puts there
 inline void check_slots(const Scene& scene) {
-    const Scene::SlotPrimitive* slots = scene.slot_primitives();
+    const SceneData::SlotPrimitive* slots = engine_data(scene).slot_primitives();
     REQUIRE(slots != nullptr);
     const std::vector<std::uint32_t>& order = scene.bvh().prims();
     const std::uint32_t spheres = static_cast<std::uint32_t>(scene.spheres.size());
@@ -89,20 +89,20 @@ inline void check_slots(const Scene& scene) {
     for (size_t k = 0; k < order.size(); ++k) {
         INFO("slot " << k);
         const std::uint32_t p = order[k];
-        const Scene::SlotPrimitive& s = slots[k];
-        CHECK((s.prim & Scene::SlotPrimitive::kIndexMask) == p);
+        const SceneData::SlotPrimitive& s = slots[k];
+        CHECK((s.prim & SceneData::SlotPrimitive::kIndexMask) == p);
         if (p < spheres) {
             const Sphere& sphere = scene.spheres[p].sphere;
-            CHECK((s.prim & Scene::SlotPrimitive::kSphere) != 0);
-            CHECK((s.prim & Scene::SlotPrimitive::kDegenerate) == 0);
+            CHECK((s.prim & SceneData::SlotPrimitive::kSphere) != 0);
+            CHECK((s.prim & SceneData::SlotPrimitive::kDegenerate) == 0);
             CHECK(Vec3(s.a) == sphere.c);
             CHECK(float(s.b.x) == sphere.r);
             continue;
         }
         const SceneTriangle& t = scene.triangles[p - spheres];
-        CHECK((s.prim & Scene::SlotPrimitive::kSphere) == 0);
-        CHECK(((s.prim & Scene::SlotPrimitive::kDegenerate) != 0) ==
-              scene.degenerate(p - spheres));
+        CHECK((s.prim & SceneData::SlotPrimitive::kSphere) == 0);
+        CHECK(((s.prim & SceneData::SlotPrimitive::kDegenerate) != 0) ==
+              engine_data(scene).degenerate(p - spheres));
         CHECK(Vec3(s.a) == t.v0);
         CHECK(Vec3(s.b) == t.v1);
         CHECK(Vec3(s.c) == t.v2);

@@ -3,13 +3,16 @@
 // reference's.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 #include "raylab/engine.h"
 #include "raylab/renderer.h"
 #include "raylab/sample_scenes.h"
 #include "raylab/scenes.h"
+#include "engine_test_data.h"
 #include "test_helpers.h"
 
 using namespace raylab;
@@ -48,6 +51,27 @@ const Ray kThroughVertex{Vec3(0x1.5d08dcp+13f, 0x1.9bb8p+15f, 0x1.664acep+13f),
                          Vec3(-0x1.5d02fcp+13f, -0x1.9bb82p+15f, -0x1.6645eep+13f), 0.0f,
                          kInfinity};
 
+Vec3 hex3(const char* x, const char* y, const char* z) {
+    return Vec3(std::strtof(x, nullptr), std::strtof(y, nullptr),
+                std::strtof(z, nullptr));
+}
+
+float max_abs(const Vec3& v) {
+    return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+}
+
+// Distance (max norm) from the exact point, in units of delta(exact) (raylab/refine.h)
+float error_in_delta(const Vec3& got, const Vec3& exact) {
+    return max_abs(got - exact) / (0x1p-23f * max_abs(exact));
+}
+
+Scene one_triangle(const Vec3& v0, const Vec3& v1, const Vec3& v2) {
+    Scene s;
+    s.materials.push_back(Material{"grey", Vec3(0.5f), Vec3(0.0f)});
+    s.triangles.push_back(SceneTriangle{v0, v1, v2});
+    return s;
+}
+
 }  // namespace
 
 TEST_SUITE("engine") {
@@ -69,7 +93,7 @@ TEST_SUITE("engine") {
             // INFO captures in a lambda, which clang 14 refuses for a structured binding
             const std::string& scene_name = name;
             INFO("scene " << scene_name);
-            (scene.has_face_normals() ? kept : computed) = true;
+            (engine_data(scene).has_face_normals() ? kept : computed) = true;
             const Aabb box = scene.bounds();
             const Vec3 centre = box.centre(), size = box.hi - box.lo;
             Rng rng(77);
@@ -208,7 +232,7 @@ TEST_SUITE("engine") {
         CHECK(rays == 10000);
     }
 
-    // Review of the copy-free engine: commit() cleared the degenerate flags before it
+    // A commit() once cleared the degenerate flags before it
     // had checked every triangle, so one that threw left the old BVH with no flags, and
     // the engine hit the collinear triangle below (NaN normal) where the module path
     // missed it. A commit() that throws now changes nothing
@@ -237,7 +261,7 @@ TEST_SUITE("engine") {
 
     // The same, but before the throwing commit() a triangle was reversed (same box,
     // normal flipped): the module path reads the scene's triangles, so the engine must
-    // not read the normals the last good commit() kept (review: it did)
+    // not read the normals the last good commit() kept
     TEST_CASE(
         "a commit() that throws after a vertex change keeps both paths in agreement") {
         const ModuleTable fast = engine_table(), slow = module_path_table();
@@ -273,7 +297,7 @@ TEST_SUITE("engine") {
         before.v0.y += 0.25f;  // not collinear; the same box around v2
         scene.triangles.push_back(before);
         scene.commit();
-        REQUIRE_FALSE(scene.degenerate(0));
+        REQUIRE_FALSE(engine_data(scene).degenerate(0));
         scene.triangles[0] = kCollinear;
         scene.ambient = -1.0f;
         CHECK_THROWS_AS(scene.commit(), Error);
@@ -482,5 +506,38 @@ TEST_SUITE("engine") {
         // Not tried: the same tests as without a hint
         CHECK(hf.intersection_tests == plain.intersection_tests);
         CHECK(hs.intersection_tests == plain.intersection_tests);
+    }
+
+    // The point exact to pbrt's deltaT, which the engine keeps instead of refining,
+    // against the exact intersection (Python fractions), rounded to float
+    TEST_CASE(
+        "the engine's refined point: deltaT is no bound when |w| > 1 (grazing ray)") {
+        // pbrt's dx = gamma(5) (max_x + max_z) uses the z already scaled by 1 / w_z: with
+        // |w_z| = 1e6 the shear's rounding (about 3u |z| before scaling) is missed.
+        // |td - t| was 2592 dt and the engine's point 4.9 delta (8.9 half-ulps) off
+        // (module path: 0.08 delta). Ray::w is unit by contract, but nothing checks it:
+        // the engine now refines only rays with |w|_max <= 1
+        Scene s =
+            one_triangle(hex3("-0x1.9e5d1ep+12", "-0x1.aa131cp+11", "-0x1.9d4b44p+13"),
+                         hex3("-0x1.9e5d2ap+12", "-0x1.aa1316p+11", "-0x1.9d4b42p+13"),
+                         hex3("0x1.9e797p+12", "0x1.a9edccp+11", "0x1.9d4054p+13"));
+        s.commit();
+        const Ray r{hex3("-0x1.2dcbe4p+14", "-0x1.364392p+13", "-0x1.2cfb0cp+15"),
+                    hex3("0x1.aa8774p+18", "0x1.b6734ep+17", "0x1.a9596p+19"), 0.0f,
+                    kInfinity};
+        const Vec3 exact = hex3("0x1.1162e6p+3", "0x1.ad3de6p+1", "0x1.d2edb4p+3");
+        const ModuleTable fast = engine_table(), slow = module_path_table();
+        TraceCounters c;
+        Hit hit;
+        PrimRef p;
+        fast.engine->closest_hit(s, r, c, hit, p);
+        REQUIRE(p.kind == PrimRef::Kind::triangle);
+        if (p.refined) CHECK(error_in_delta(hit.position, exact) <= 1.0f);
+        const auto a = s.closest_hit(fast, r, c), b = s.closest_hit(slow, r, c);
+        REQUIRE(a.has_value());
+        REQUIRE(b.has_value());
+        CHECK(error_in_delta(a->position, exact) <= 1.0f);
+        CHECK(error_in_delta(b->position, exact) <= 1.0f);
+        CHECK(max_abs(a->position - b->position) <= 0x1p-23f * max_abs(b->position));
     }
 }

@@ -67,7 +67,7 @@ RAYLAB_INLINE void closest_hit_from(const Scene& scene, const Source& source,
         }
         return false;
     };
-    scene.bvh().traverse<Avx>(ray, visit, counters.bvh_nodes);
+    walk<true, Avx>(scene.bvh(), ray, visit, counters.bvh_nodes);
     if (best.kind == PrimRef::Kind::none && !in_bvh) return;
     finish_hit(scene, Primitives(scene), r, best_t, in_bvh,
                in_bvh ? source.prim(best_slot) : 0, best_extra, hit, best);
@@ -76,7 +76,7 @@ RAYLAB_INLINE void closest_hit_from(const Scene& scene, const Source& source,
 template <bool Avx>
 RAYLAB_INLINE void closest_hit_query(const Scene& scene, const Ray& r,
                                      TraceCounters& counters, Hit& hit, PrimRef& best) {
-    if (const Scene::SlotPrimitive* slots = scene.slot_primitives())
+    if (const SceneData::SlotPrimitive* slots = scene_data(scene).slot_primitives())
         closest_hit_from<Avx>(scene, SlotPrimitives{slots}, r, counters, hit, best);
     else if (scene.spheres.empty())
         closest_hit_from<Avx>(scene, SlotOrderTriangles(scene), r, counters, hit, best);
@@ -112,7 +112,7 @@ RAYLAB_INLINE bool any_hit_from(const Scene& scene, const Source& source, const 
         }
         return false;
     };
-    scene.bvh().traverse_any<Avx>(r, visit, counters.bvh_nodes);
+    walk<false, Avx>(scene.bvh(), r, visit, counters.bvh_nodes);
     if (hint) hint->slot = stopped;
     return stopped != AnyHitHint::kNone;
 }
@@ -120,7 +120,7 @@ RAYLAB_INLINE bool any_hit_from(const Scene& scene, const Source& source, const 
 template <bool Avx>
 RAYLAB_INLINE bool any_hit_query(const Scene& scene, const Ray& r,
                                  TraceCounters& counters, AnyHitHint* hint) {
-    if (const Scene::SlotPrimitive* slots = scene.slot_primitives())
+    if (const SceneData::SlotPrimitive* slots = scene_data(scene).slot_primitives())
         return any_hit_from<Avx>(scene, SlotPrimitives{slots}, r, counters, hint);
     if (scene.spheres.empty())
         return any_hit_from<Avx>(scene, SlotOrderTriangles(scene), r, counters, hint);
@@ -153,11 +153,21 @@ const GeometryEngine* geometry_engine() {
     static const GeometryEngine engine{&intersect_plane,
                                        &intersect_sphere,
                                        &intersect_triangle,
+                                       &engine_kernels::prepare_scene,
                                        engine_kernels::closest_hit_versions_chosen(),
                                        engine_kernels::any_hit_versions_chosen(),
                                        engine_kernels::chosen_packet_query(),
                                        engine_kernels::engine_versions()};
     return &engine;
 }
+
+namespace {
+// The scenes committed from now on prepare the engine's data (raylab/engine.h): the
+// engine registers itself before main() in every program that links it
+[[maybe_unused]] const bool registered = [] {
+    register_geometry_engine(geometry_engine());
+    return true;
+}();
+}  // namespace
 
 }  // namespace raylab::reference

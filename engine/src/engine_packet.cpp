@@ -1,6 +1,6 @@
 // The reference engine's packet query (GeometryEngine::closest_hit_packet): up to 16 rays
 // from one origin, as a 4 x 4 block of a tile's camera rays, walk the BVH together (one
-// frustum slab test per node, Bvh::traverse_frustum) and test each triangle four rays at
+// frustum slab test per node, traverse_frustum) and test each triangle four rays at
 // a time, with exactly the single-ray query's operations on exactly its values, so each
 // ray gets closest_hit's result bit for bit (tests/framework/test_packets.cpp).
 //
@@ -11,7 +11,7 @@
 //
 // Why it gives the same hits: every ray's test is the scalar test's sequence of IEEE
 // operations (-ffp-contract=off), the frustum visits every leaf a ray's own walk would
-// visit (Bvh::Frustum), and the nearest accepted hit is the same whatever the order of
+// visit (Frustum), and the nearest accepted hit is the same whatever the order of
 // the visit, except for a tie: two primitives accepted at the same t, where the
 // single-ray walk keeps the one it visits last. A ray that meets a tie is traced again
 // alone.
@@ -54,7 +54,7 @@ struct Packet {
 // vectors: 1 / w_kz for four rays at a time, and the frustum's reciprocals only for the
 // extreme components (1 / w rounds monotonically, so the extremes of the rays' 1 / w are
 // those of 1 / w_min and 1 / w_max)
-RAYLAB_INLINE bool make_packet(const Ray* rays, int n, Packet& pk, Bvh::Frustum& f) {
+RAYLAB_INLINE bool make_packet(const Ray* rays, int n, Packet& pk, Frustum& f) {
     const Ray& r0 = rays[0];
     pk.kz = WoopRay::dominant_axis(r0.w);
     pk.kx = WoopRay::next_axis(pk.kz);
@@ -71,7 +71,7 @@ RAYLAB_INLINE bool make_packet(const Ray* rays, int n, Packet& pk, Bvh::Frustum&
         // A range that starts behind the origin (or is NaN) goes by the single-ray walk's
         // own rules: the slab test's margin (exit * kSlabGrow) shrinks for a negative
         // exit, and a packet that visits the leaves in another order could then skip one
-        // holding a hit a few ulps nearer than its first (review: two spheres behind the
+        // holding a hit a few ulps nearer than its first (two spheres behind the
         // origin, hits 2 ulps apart). Camera rays start at 0
         if (!(r.tmin >= 0.0f) || std::isnan(r.tmax)) return false;
         for (int a = 0; a < 3; ++a) {
@@ -89,7 +89,7 @@ RAYLAB_INLINE bool make_packet(const Ray* rays, int n, Packet& pk, Bvh::Frustum&
         pk.has_best[k] = pk.in_bvh[k] = pk.tie[k] = false;
     }
     for (int a = 0; a < 3; ++a) {
-        // The reciprocals as the single-ray walk computes them (Bvh::walk)
+        // The reciprocals as the single-ray walk computes them (walk, engine_walk.h)
         const float lo = 1.0f / w_hi[a], hi = 1.0f / w_lo[a];
         if (!std::isfinite(lo) || !std::isfinite(hi) || lo == 0.0f || hi == 0.0f)
             return false;
@@ -172,7 +172,7 @@ template <bool Avx>
 RAYLAB_INLINE void packet_query(const Scene& scene, const Ray* rays, int n,
                                 TraceCounters& counters, Hit* hits, PrimRef* prims) {
     Packet pk;
-    Bvh::Frustum f;
+    Frustum f;
     if (n < 2 || n > kMaxRays || !make_packet(rays, n, pk, f)) {
         for (int k = 0; k < n; ++k)
             closest_hit(scene, rays[k], counters, hits[k], prims[k]);
@@ -201,8 +201,9 @@ RAYLAB_INLINE void packet_query(const Scene& scene, const Ray* rays, int n,
     counters.intersection_tests += std::uint64_t(n) * scene.planes.size();
     const Primitives prim(scene);
     const int groups = (n + kLanes - 1) / kLanes;
-    scene.bvh().traverse_frustum(
-        f, packet_tmax,
+    const SceneData& data = scene_data(scene);
+    traverse_frustum(
+        scene.bvh(), f, packet_tmax,
         [&](std::uint32_t first, std::uint32_t count,
             const Aabb& box) __attribute__((always_inline)) {
             // The rays that meet the leaf's box, by groups of four
@@ -228,7 +229,7 @@ RAYLAB_INLINE void packet_query(const Scene& scene, const Ray* rays, int n,
                     continue;
                 }
                 const std::uint32_t j = p - prim.sphere_count;
-                if (scene.degenerate(j)) continue;  // the module refuses it for every ray
+                if (data.degenerate(j)) continue;  // the module refuses it for every ray
                 // The translation, once: the vertices minus the origin, permuted
                 const SceneTriangle& tri = prim.triangles[j];
                 const Vec3* vs[3] = {&tri.v0, &tri.v1, &tri.v2};
