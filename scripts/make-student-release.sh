@@ -85,7 +85,7 @@ excluded() {
     case $1 in
         bench/CMakeLists.txt | bench/student_* | bench/kernels.* | bench/kernel_cases.* | \
             bench/report.* | bench/rng.h) return 1 ;;
-        solutions/* | bench/* | tests/stress/* | tests/e2e/* | docs/instructor-guide.md | \
+        solutions/* | engine/* | bench/* | tests/stress/* | tests/e2e/* | docs/instructor-guide.md | \
             docs/benchmarks.md | docs/sampling-benchmarks.md | docs/images/sampling-benchmark* | \
             docs/data/* | \
             tests/data/golden/* | build*/* | scripts/release/* | README.md) return 0 ;;
