@@ -5,12 +5,36 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render_sampling.h"
+
 namespace raylab::detail {
 
 namespace {
 
 size_t pixels_of(const Tile& tile) {
     return size_t(tile.x1 - tile.x0) * size_t(tile.y1 - tile.y0);
+}
+
+// What CameraHits are keyed on besides the view and size: the functions that make camera
+// rays and hits. An intersection module counts only where the scene has its primitives
+// (a sphere module cannot change the hits of a scene without spheres), and the engine
+// not at all: it gives the module path's hits bit for bit
+// (tests/framework/test_engine.cpp)
+std::vector<const void*> camera_hit_modules(const ModuleTable& m, const Scene& scene) {
+    const auto p = [](auto f) { return reinterpret_cast<const void*>(f); };
+    return {p(m.image_plane_point),
+            p(m.render_tile),
+            p(m.camera_frame),
+            p(m.camera_constant),
+            p(m.camera_ray),
+            scene.planes.empty() ? nullptr : p(m.intersect_plane),
+            scene.spheres.empty() ? nullptr : p(m.intersect_sphere),
+            scene.triangles.empty() ? nullptr : p(m.intersect_triangle)};
+}
+
+// One sample per pixel and at most kMaxPixels (CameraHits)
+bool keepable(const RenderSettings& s) {
+    return !supersampled(s) && std::int64_t{s.width} * s.height <= CameraHits::kMaxPixels;
 }
 
 }  // namespace
@@ -155,6 +179,38 @@ CameraSample KeptHits::take(const Vec2& uv) {
         in_order_ = false;
     }
     return cast_.take(uv);
+}
+
+// ---- The frame's key ------------------------------------------------------------------
+
+KeptFrame::KeptFrame(const Scene& scene, const View& view, const RenderSettings& settings,
+                     const ModuleTable& modules, size_t tile_count)
+    : view_(view),
+      settings_(settings),
+      kept_(keepable(settings) ? settings.camera_hits : nullptr),
+      primitives_{scene.planes.size(), scene.spheres.size(), scene.triangles.size()} {
+    if (!kept_) return;
+    modules_ = camera_hit_modules(modules, scene);
+    const bool same_key = kept_->keyed && kept_->width == settings.width &&
+                          kept_->height == settings.height && kept_->view == view &&
+                          std::equal(primitives_, primitives_ + 3, kept_->primitives) &&
+                          kept_->modules == modules_;
+    reuse_ = same_key && kept_->valid && kept_->tiles.size() == tile_count;
+    if (reuse_) return;
+    keep_ = same_key;
+    kept_->clear();
+    if (keep_) kept_->tiles.resize(tile_count);
+}
+
+void KeptFrame::finish(bool cancelled, bool overflow) {
+    if (!kept_ || reuse_ || cancelled) return;
+    kept_->valid = keep_ && !overflow;
+    kept_->keyed = true;
+    kept_->width = settings_.width;
+    kept_->height = settings_.height;
+    kept_->view = view_;
+    std::copy(primitives_, primitives_ + 3, kept_->primitives);
+    kept_->modules = modules_;
 }
 
 }  // namespace raylab::detail

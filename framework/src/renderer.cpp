@@ -1,5 +1,6 @@
 // The renderer (raylab/renderer.h): tiles on all cores, one camera ray per pixel (or the
-// sampling passes of render_sampling.cpp), closest hit, shading by the chosen mode.
+// sampling passes of render_sampling.cpp), each camera hit from a CameraHitSource
+// (raylab/camera_hit_sources.h: cast, traced ahead or kept), shading by the chosen mode.
 #include "raylab/renderer.h"
 
 #include <algorithm>
@@ -85,6 +86,7 @@ namespace {
 
 using detail::CameraHitSource;
 using detail::CameraSample;
+using detail::KeptFrame;
 using detail::WorkCounters;
 
 // What the shading of a frame's hits reads
@@ -186,82 +188,6 @@ class PixelShader {
     Vec3 centre_;                       // area lights face the scene's centre
     Vec2 uv_{0.0f};         // the camera sample being shaded (seeds the light samples)
     std::vector<Vec2> xi_;  // light sample points
-};
-
-// What CameraHits are keyed on besides the view and size: the functions that make camera
-// rays and hits. An intersection module counts only where the scene has its primitives
-// (a sphere module cannot change the hits of a scene without spheres), and the engine
-// not at all: it gives the module path's hits bit for bit
-// (tests/framework/test_engine.cpp)
-std::vector<const void*> camera_hit_modules(const ModuleTable& m, const Scene& scene) {
-    const auto p = [](auto f) { return reinterpret_cast<const void*>(f); };
-    return {p(m.image_plane_point),
-            p(m.render_tile),
-            p(m.camera_frame),
-            p(m.camera_constant),
-            p(m.camera_ray),
-            scene.planes.empty() ? nullptr : p(m.intersect_plane),
-            scene.spheres.empty() ? nullptr : p(m.intersect_sphere),
-            scene.triangles.empty() ? nullptr : p(m.intersect_triangle)};
-}
-
-// What a frame does with settings.camera_hits (CameraHits): take the last frame's hits
-// (its key is this frame's and they were all kept), keep its own for the next (the last
-// frame had this key: the camera has stopped), or neither
-class KeptFrame {
-  public:
-    KeptFrame(const Scene& scene, const View& view, const RenderSettings& settings,
-              const ModuleTable& modules, size_t tile_count)
-        : view_(view),
-          settings_(settings),
-          kept_(keepable(settings) ? settings.camera_hits : nullptr),
-          primitives_{scene.planes.size(), scene.spheres.size(), scene.triangles.size()} {
-        if (!kept_) return;
-        modules_ = camera_hit_modules(modules, scene);
-        const bool same_key =
-            kept_->keyed && kept_->width == settings.width &&
-            kept_->height == settings.height && kept_->view == view &&
-            std::equal(primitives_, primitives_ + 3, kept_->primitives) &&
-            kept_->modules == modules_;
-        reuse_ = same_key && kept_->valid && kept_->tiles.size() == tile_count;
-        if (reuse_) return;
-        keep_ = same_key;
-        kept_->clear();
-        if (keep_) kept_->tiles.resize(tile_count);
-    }
-
-    // The last frame's hits to take, or nullptr
-    const CameraHits* reused() const { return reuse_ ? kept_ : nullptr; }
-    // Where tile t's samples are kept for the next frame, or nullptr
-    std::vector<CameraSample>* keep(int t) const {
-        return keep_ ? &kept_->tiles[size_t(t)] : nullptr;
-    }
-
-    // Notes the frame's key, and whether its hits are kept. A cancelled frame leaves them
-    // forgotten, as its start left them (some tiles were never rendered)
-    void finish(bool cancelled, bool overflow) {
-        if (!kept_ || reuse_ || cancelled) return;
-        kept_->valid = keep_ && !overflow;
-        kept_->keyed = true;
-        kept_->width = settings_.width;
-        kept_->height = settings_.height;
-        kept_->view = view_;
-        std::copy(primitives_, primitives_ + 3, kept_->primitives);
-        kept_->modules = modules_;
-    }
-
-  private:
-    static bool keepable(const RenderSettings& s) {
-        return !detail::supersampled(s) &&
-               std::int64_t{s.width} * s.height <= CameraHits::kMaxPixels;
-    }
-
-    const View& view_;
-    const RenderSettings& settings_;
-    CameraHits* const kept_;
-    const size_t primitives_[3];
-    std::vector<const void*> modules_;
-    bool reuse_ = false, keep_ = false;
 };
 
 // Distance at which the depth view turns black: the far side of the scene's bounds

@@ -10,7 +10,8 @@
 //                    pixel loop asks for the kept points in the kept order
 // The two that hand out hits made before the call cast the rest of a tile once the loop
 // leaves their order. A source also keeps what a frame's loop takes for the next frame
-// (CameraHits): each tile's samples in the loop's order, at most kKeptPerPixel a pixel.
+// (CameraHits): each tile's samples in the loop's order, at most kKeptPerPixel a pixel;
+// KeptFrame decides from the frame's key whether a frame takes, keeps or neither.
 //
 // Internal to the framework (framework/internal/): the renderer and its tests use it.
 #pragma once
@@ -140,6 +141,34 @@ class KeptHits final : public CameraHitSource {
     const std::vector<CameraSample>* tile_ = nullptr;  // the kept samples of the tile
     size_t cursor_ = 0;                                // the next one to hand out
     bool in_order_ = false;  // the loop has asked for the kept points so far
+};
+
+/// What a frame does with settings.camera_hits (CameraHits): take the last frame's hits
+/// (its key is this frame's and they were all kept: KeptHits), keep its own for the next
+/// (the last frame had this key: the camera has stopped), or neither. The key is noted
+/// by finish(), after the frame's tiles.
+class KeptFrame {
+  public:
+    KeptFrame(const Scene& scene, const View& view, const RenderSettings& settings,
+              const ModuleTable& modules, size_t tile_count);
+    /// The last frame's hits to take, or nullptr
+    const CameraHits* reused() const { return reuse_ ? kept_ : nullptr; }
+    /// Where tile t's samples are kept for the next frame, or nullptr
+    std::vector<CameraSample>* keep(int t) const {
+        return keep_ ? &kept_->tiles[size_t(t)] : nullptr;
+    }
+    /// Notes the frame's key, and whether its hits are kept (overflow: a tile's loop
+    /// asked more than it may keep). A cancelled frame leaves them forgotten, as its
+    /// start left them (some tiles were never rendered)
+    void finish(bool cancelled, bool overflow);
+
+  private:
+    const View& view_;
+    const RenderSettings& settings_;
+    CameraHits* const kept_;
+    const size_t primitives_[3];
+    std::vector<const void*> modules_;
+    bool reuse_ = false, keep_ = false;
 };
 
 }  // namespace raylab::detail
