@@ -1,12 +1,16 @@
 // The renderer (raylab/renderer.h): tiles on all cores, one camera ray per pixel (or the
-// sampling passes of render_sampling.cpp), closest hit, shading by the chosen mode.
+// sampling passes of render_sampling.cpp), each camera hit from a CameraHitSource
+// (raylab/camera_hit_sources.h: cast, traced ahead or kept), shading by the chosen mode.
 #include "raylab/renderer.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <exception>
+#include <memory>
 #include <thread>
 
+#include "raylab/camera_hit_sources.h"
 #include "raylab/error.h"
 #include "raylab/input_checks.h"
 #include "render_sampling.h"
@@ -52,9 +56,18 @@ void validate(const RenderSettings& s) {
     check_light_samples(s.light_samples, "light samples");
 }
 
+namespace {
+
+// The tiles of one pass over the image
+int tiles_in_a_pass(const RenderSettings& s) {
+    return ((s.width + kTileSize - 1) / kTileSize) *
+           ((s.height + kTileSize - 1) / kTileSize);
+}
+
+}  // namespace
+
 std::int64_t render_tile_total(const RenderSettings& s) {
-    const std::int64_t tiles = std::int64_t{(s.width + kTileSize - 1) / kTileSize} *
-                               ((s.height + kTileSize - 1) / kTileSize);
+    const std::int64_t tiles = tiles_in_a_pass(s);
     const bool two_passes =
         detail::supersampled(s) && s.sampling == PixelSampling::adaptive;
     return two_passes ? 2 * tiles : tiles;
@@ -71,225 +84,82 @@ PinholeCamera make_camera(const ModuleTable& modules, const View& view) {
 
 namespace {
 
-// Per-thread work counters, summed after the frame
-struct alignas(64) Counters {  // one cache line each: no false sharing
-    TraceCounters trace;
-    std::uint64_t camera_rays = 0;
-    std::uint64_t camera_rays_reused = 0;
-    std::uint64_t shadow_rays = 0;
-    std::uint64_t backfacing = 0;
-    std::uint64_t disabled = 0;
-    bool hits_overflow = false;  // the pixel loop asked more than kKeptPerPixel per pixel
+using detail::CameraHitSource;
+using detail::CameraSample;
+using detail::KeptFrame;
+using detail::WorkCounters;
+
+// What the shading of a frame's hits reads
+struct FrameInputs {
+    const Scene& scene;
+    const ModuleTable& modules;
+    const PinholeCamera camera;
+    const RenderSettings& settings;
+    const float depth_range;  // the depth view turns black there
 };
 
-// A tile keeps at most this many camera samples per pixel (CameraHits): a pixel loop that
-// asks more (a student's supersampling in module 01) keeps none in that frame, instead of
-// 68 bytes a call (1.1 GB at 16 a pixel in 1280 x 800)
-constexpr size_t kKeptPerPixel = 2;
-
-// The framework's per-pixel work, given to the pixel loop as PixelRadiance
+// How a camera sample is shaded: the framework's per-pixel work after the hit, by the
+// chosen mode (where the hit comes from is the CameraHitSource's part)
 class PixelShader {
   public:
-    PixelShader(const Scene& scene, const ModuleTable& modules,
-                const PinholeCamera& camera, const RenderSettings& settings,
-                float depth_range, Counters& counters)
-        : scene_(scene),
-          modules_(modules),
-          camera_(camera),
-          settings_(settings),
-          depth_range_(depth_range),
+    PixelShader(const FrameInputs& frame, WorkCounters& counters)
+        : frame_(frame),
           counters_(counters),
-          occluder_(scene, modules, counters.trace),
-          centre_(scene.bounds().centre()) {}
+          occluder_(frame.scene, frame.modules, counters.trace),
+          centre_(frame.scene.bounds().centre()) {}
 
     // The shadow rays of the next pixels start without the last blocker's hint
     void forget_blocker() { occluder_.forget_blocker(); }
 
-    // The next tile's kept camera hits (CameraHits): reuse them in order, or keep them
-    void begin_tile(std::vector<CameraHits::Sample>* hits, bool reuse, bool keep,
-                    const Tile& tile) {
-        const size_t pixels = size_t(tile.x1 - tile.x0) * size_t(tile.y1 - tile.y0);
-        if (keep) hits->reserve(pixels);
-        keep_limit_ = kKeptPerPixel * pixels;
-        tile_hits_ = hits;
-        source_ = hits;
-        cursor_ = 0;
-        reuse_ = reuse;
-        keep_ = keep;
-        last_frame_ = reuse;
-    }
-
-    // Traces the tile's camera rays ahead of its pixel loop, in packets of 4 x 4 pixels
-    // (Scene::closest_hits): the pixel loop then takes them as it takes kept hits, in the
-    // reference loop's order (rows top to bottom, columns left to right), while it asks
-    // for the same points. Only where the scene traces packets (the reference's engine),
-    // and not over hits kept from the last frame. A pixel loop that asks in another order
-    // takes the rest of the tile one ray at a time, and this thread stops tracing ahead
-    // for the rest of the frame.
-    void trace_ahead(const Tile& tile) {
-        if (last_frame_ || ahead_off_ || !scene_.traces_packets(modules_)) return;
-        const int W = settings_.width, H = settings_.height;
-        const int tw = tile.x1 - tile.x0, th = tile.y1 - tile.y0;
-        ahead_.resize(size_t(tw) * size_t(th));
-        rays_.clear();
-        slots_.clear();
-        // Row-major samples; rays gathered block by block
-        for (int by = 0; by < th; by += 4)
-            for (int bx = 0; bx < tw; bx += 4)
-                for (int y = by; y < std::min(by + 4, th); ++y)
-                    for (int x = bx; x < std::min(bx + 4, tw); ++x) {
-                        const size_t slot = size_t(y) * size_t(tw) + size_t(x);
-                        CameraHits::Sample& s = ahead_[slot];
-                        s.uv = modules_.image_plane_point(tile.x0 + x, tile.y0 + y, W, H);
-                        // Made in place: a Ray written by field and then copied whole
-                        // stalls on the copy (store-to-load forwarding fails), which
-                        // was a quarter of this loop
-                        s.traced = camera_ray(s.uv, rays_.emplace_back());
-                        s.hit.reset();
-                        if (!s.traced) {
-                            rays_.pop_back();
-                            continue;
-                        }
-                        slots_.push_back(slot);
-                    }
-        hits_.resize(rays_.size());
-        scene_.closest_hits(modules_, rays_.data(), static_cast<int>(rays_.size()),
-                            counters_.trace, hits_.data());
-        counters_.camera_rays += rays_.size();
-        for (size_t k = 0; k < slots_.size(); ++k)
-            ahead_[slots_[k]].hit = hits_[k];
-        source_ = &ahead_;
-        cursor_ = 0;
-        reuse_ = true;
-    }
-
-    // After the tile's pixel loop: did it take every ray traced ahead, in order? The
-    // samples it took in order are the ones to keep: all of them change places with the
-    // tile's kept array (no copy, and the array's memory goes round for the next tile)
-    void end_tile() {
-        if (source_ != &ahead_) return;
-        if (cursor_ != ahead_.size()) ahead_off_ = true;
-        if (keep_ && reuse_) {
-            if (cursor_ == ahead_.size()) {
-                tile_hits_->swap(ahead_);
-            } else {
-                keep_taken_ahead();
-            }
-        }
-        source_ = tile_hits_;
-        reuse_ = false;
-    }
-
-    Vec3 radiance(const Vec2& uv, std::optional<Hit>* hit_out = nullptr,
-                  Ray* ray_out = nullptr) {
+    // The radiance of the camera sample the pixel loop asked for at uv
+    Vec3 shade(const Vec2& uv, const CameraSample& sample) {
+        const RenderSettings& settings = frame_.settings;
         uv_ = uv;
-        Ray ray;
-        bool traced = false;
-        // The hit is initialised from the query's result, not assigned: an assignment
-        // copied it 16 bytes at a time while the engine's narrower stores to it were
-        // still in the store buffer, which cannot forward them (3 % of a Cornell frame)
-        const CameraHits::Sample* kept = kept_sample(uv);
-        const std::optional<Hit> hit =
-            kept ? kept->hit : cast_camera_ray(uv, ray, traced);
-        if (kept) traced = kept->traced;  // (the ray is not kept: shading needs the hit)
-        // A sample taken from those traced ahead is kept at end_tile (or when the pixel
-        // loop leaves their order), all at once
-        if (keep_ && !(kept && source_ == &ahead_)) {
-            if (tile_hits_->size() < keep_limit_) {
-                tile_hits_->push_back({uv, traced, hit});
-            } else {
-                keep_ = false;  // this frame keeps nothing (render() sees the flag)
-                counters_.hits_overflow = true;
-            }
-        }
-        if (!traced) return settings_.background;
-        if (ray_out) *ray_out = ray;
-        if (hit_out) *hit_out = hit;
-        if (!hit) return settings_.background;
-        const Material& material = scene_.materials[hit->material];
-        switch (settings_.mode) {
+        if (!sample.traced || !sample.hit) return settings.background;
+        const Hit& hit = *sample.hit;
+        const Material& material = frame_.scene.materials[hit.material];
+        switch (settings.mode) {
             case ShadingMode::normals:
-                return 0.5f * (hit->ns + Vec3(1.0f));
+                return 0.5f * (hit.ns + Vec3(1.0f));
             case ShadingMode::base:
                 return material.rho;
             case ShadingMode::depth:
-                return Vec3(std::clamp(1.0f - hit->t / depth_range_, 0.0f, 1.0f));
+                return Vec3(std::clamp(1.0f - hit.t / frame_.depth_range, 0.0f, 1.0f));
             case ShadingMode::lambert:
                 break;
         }
-        return direct_light(*hit, material);
+        return direct_light(hit, material);
     }
 
   private:
-    // The kept camera hit of uv while the pixel loop asks for the kept points in the
-    // same order; nullptr once out of step (the rest of the tile is cast)
-    const CameraHits::Sample* kept_sample(const Vec2& uv) {
-        if (reuse_ && cursor_ < source_->size() && (*source_)[cursor_].uv == uv) {
-            // (a point whose camera ray was not valid was not a ray)
-            if (last_frame_ && (*source_)[cursor_].traced) ++counters_.camera_rays_reused;
-            return &(*source_)[cursor_++];
-        }
-        if (reuse_ && keep_ && source_ == &ahead_) keep_taken_ahead();
-        reuse_ = false;
-        return nullptr;
-    }
-
-    // Keeps the samples traced ahead that the pixel loop has taken in order so far
-    void keep_taken_ahead() {
-        tile_hits_->insert(tile_hits_->end(), ahead_.begin(),
-                           ahead_.begin() + static_cast<std::ptrdiff_t>(cursor_));
-    }
-
-    // The camera module's ray through uv, its w normalised (the framework boundary,
-    // docs/style.md rule 9); false when the ray is not valid (not traced). The module's
-    // ray is read by component: a copy of the whole waits for the module's stores to
-    // finish (a failed store-to-load forwarding), 6 % of a Cornell frame on one thread
-    // (raylab-bench section 3)
-    bool camera_ray(const Vec2& uv, Ray& ray) const {
-        const Ray r = modules_.camera_ray(camera_, uv);
-        const float len = glm::length(r.w);
-        if (!(len > 0.0f && std::isfinite(len) && is_finite(r.o))) return false;
-        ray.o = r.o;
-        ray.w = r.w / len;
-        ray.tmin = r.tmin;
-        ray.tmax = r.tmax;
-        return true;
-    }
-
-    // The camera ray through uv and its closest hit; traced: false when the camera
-    // module's ray is not valid
-    std::optional<Hit> cast_camera_ray(const Vec2& uv, Ray& ray, bool& traced) {
-        traced = camera_ray(uv, ray);
-        if (!traced) return std::nullopt;
-        ++counters_.camera_rays;
-        return scene_.closest_hit(modules_, ray, counters_.trace);
-    }
-
     // Lights that reach the hit point, then the Lambert module; shadow rays only where
     // needed
     Vec3 direct_light(const Hit& hit, const Material& material) {
+        const Scene& scene = frame_.scene;
         visible_.clear();
-        for (size_t k = 0; k < scene_.lights.size(); ++k) {
-            const PointLight& light = scene_.lights[k];
-            if (settings_.light_size > 0.0f) {
+        for (size_t k = 0; k < scene.lights.size(); ++k) {
+            const PointLight& light = scene.lights[k];
+            if (frame_.settings.light_size > 0.0f) {
                 area_light(hit, light, k);
                 continue;
             }
-            add_if_visible(hit, modules_.sample_point_light(light, hit.position));
+            add_if_visible(hit, frame_.modules.sample_point_light(light, hit.position));
         }
-        return modules_.lambert(material.rho, material.Le, hit.ns, visible_) +
-               scene_.ambient * material.rho;
+        return frame_.modules.lambert(material.rho, material.Le, hit.ns, visible_) +
+               scene.ambient * material.rho;
     }
 
     // The area light that stands in for point light k (module 10): N samples, each with
     // the backfacing skip and the shadow test of a point light
     void area_light(const Hit& hit, const PointLight& light, size_t k) {
-        const AreaLight area = area_light_for(light, settings_.light_size, centre_);
-        const int N = settings_.light_samples;
-        xi_ = modules_.light_sample_points(N, settings_.light_stratified,
-                                           detail::light_rng(settings_, uv_, k));
+        const RenderSettings& settings = frame_.settings;
+        const AreaLight area = area_light_for(light, settings.light_size, centre_);
+        const int N = settings.light_samples;
+        xi_ = frame_.modules.light_sample_points(N, settings.light_stratified,
+                                                 detail::light_rng(settings, uv_, k));
         for (const Vec2& xi : xi_)
-            add_if_visible(hit, modules_.sample_area_light(area, hit.position, xi, N));
+            add_if_visible(hit,
+                           frame_.modules.sample_area_light(area, hit.position, xi, N));
     }
 
     // One light sample, point or area: a light behind the surface contributes nothing
@@ -299,59 +169,26 @@ class PixelShader {
             ++counters_.backfacing;
             return;
         }
-        if (!settings_.shadows) {
+        if (!frame_.settings.shadows) {
             ++counters_.disabled;
         } else {
             const std::uint64_t before = occluder_.shadow_rays;
             const bool blocked =
-                modules_.in_shadow(occluder_, hit.position, hit.ns, sample);
+                frame_.modules.in_shadow(occluder_, hit.position, hit.ns, sample);
             counters_.shadow_rays += occluder_.shadow_rays - before;
             if (blocked) return;
         }
         visible_.push_back(sample);
     }
 
-    const Scene& scene_;
-    const ModuleTable& modules_;
-    const PinholeCamera& camera_;
-    const RenderSettings& settings_;
-    float depth_range_;
-    Counters& counters_;
+    const FrameInputs& frame_;
+    WorkCounters& counters_;
     SceneOccluder occluder_;
     std::vector<LightSample> visible_;  // reused: no allocation per pixel
     Vec3 centre_;                       // area lights face the scene's centre
-    Vec2 uv_{0.0f};                     // the camera sample being shaded
-    std::vector<Vec2> xi_;              // light sample points
-    std::vector<CameraHits::Sample>* tile_hits_ = nullptr;     // this tile's kept hits
-    const std::vector<CameraHits::Sample>* source_ = nullptr;  // hits taken in order
-    size_t cursor_ = 0;                                        // the next one to take
-    size_t keep_limit_ = 0;  // at most this many kept in the tile (kKeptPerPixel)
-    bool reuse_ = false, keep_ = false;
-    bool last_frame_ = false;  // source_ holds the last frame's hits (CameraHits)
-    // The tile's camera rays traced ahead in packets (trace_ahead)
-    std::vector<CameraHits::Sample> ahead_;
-    std::vector<Ray> rays_;
-    std::vector<size_t> slots_;
-    std::vector<std::optional<Hit>> hits_;
-    bool ahead_off_ = false;  // the pixel loop asked out of order: no more for this frame
+    Vec2 uv_{0.0f};         // the camera sample being shaded (seeds the light samples)
+    std::vector<Vec2> xi_;  // light sample points
 };
-
-// What CameraHits are keyed on besides the view and size: the functions that make camera
-// rays and hits. An intersection module counts only where the scene has its primitives
-// (a sphere module cannot change the hits of a scene without spheres), and the engine
-// not at all: it gives the module path's hits bit for bit
-// (tests/framework/test_engine.cpp)
-std::vector<const void*> camera_hit_modules(const ModuleTable& m, const Scene& scene) {
-    const auto p = [](auto f) { return reinterpret_cast<const void*>(f); };
-    return {p(m.image_plane_point),
-            p(m.render_tile),
-            p(m.camera_frame),
-            p(m.camera_constant),
-            p(m.camera_ray),
-            scene.planes.empty() ? nullptr : p(m.intersect_plane),
-            scene.spheres.empty() ? nullptr : p(m.intersect_sphere),
-            scene.triangles.empty() ? nullptr : p(m.intersect_triangle)};
-}
 
 // Distance at which the depth view turns black: the far side of the scene's bounds
 float depth_range(const Scene& scene, const View& view) {
@@ -369,85 +206,61 @@ int thread_count(const RenderSettings& settings) {
     return std::max(1u, std::thread::hardware_concurrency());
 }
 
-}  // namespace
-
-FrameStats render(const Scene& scene, const View& view, const RenderSettings& settings,
-                  const ModuleTable& modules, Image& image) {
-    validate(settings);
-    const auto start = std::chrono::steady_clock::now();
-    const PinholeCamera camera = make_camera(modules, view);
-    const float range = depth_range(scene, view);
+// The image at the settings' size, black
+void clear_image(const RenderSettings& settings, Image& image) {
     if (image.width != settings.width || image.height != settings.height) {
         image = Image(settings.width, settings.height);
     } else {
         std::fill(image.pixels.begin(), image.pixels.end(), Vec3(0.0f));
     }
-
-    // Tiles handed out by an atomic counter: threads that finish early take more
-    const int tiles_x = (settings.width + kTileSize - 1) / kTileSize;
-    const int tiles_y = (settings.height + kTileSize - 1) / kTileSize;
-    const int tile_count = tiles_x * tiles_y;
-    const int threads = std::min(thread_count(settings), tile_count);
-    std::vector<Counters> counters(static_cast<size_t>(threads));
-    const ImageView view_out = image.view();
     if (settings.samples_map)
         settings.samples_map->assign(size_t(settings.width) * size_t(settings.height), 1);
-    // Camera hits kept from the last frame, when nothing they depend on has changed
-    const bool keepable =
-        !detail::supersampled(settings) &&
-        std::int64_t{settings.width} * settings.height <= CameraHits::kMaxPixels;
-    CameraHits* const kept = keepable ? settings.camera_hits : nullptr;
-    const size_t primitives[3] = {scene.planes.size(), scene.spheres.size(),
-                                  scene.triangles.size()};
-    const std::vector<const void*> hit_modules =
-        kept ? camera_hit_modules(modules, scene) : std::vector<const void*>{};
-    bool reuse = false, keep = false;
-    if (kept) {
-        const bool same_key = kept->keyed && kept->width == settings.width &&
-                              kept->height == settings.height && kept->view == view &&
-                              std::equal(primitives, primitives + 3, kept->primitives) &&
-                              kept->modules == hit_modules;
-        reuse = same_key && kept->valid &&
-                kept->tiles.size() == static_cast<size_t>(tile_count);
-        if (!reuse) {
-            // Fill the hits only when the last frame had this key (CameraHits)
-            keep = same_key;
-            kept->clear();
-            if (keep) kept->tiles.resize(static_cast<size_t>(tile_count));
-        }
-    }
-    // One pass over all tiles on all threads; pass(tile, radiance, shader) renders a tile
-    const auto run_pass = [&](const auto& pass) {
+}
+
+// Which source gives a pass's camera hits
+enum class HitSource { cast, traced_ahead, kept };
+
+// The frame's tiles on all threads, pass by pass, and the threads' work counts. Tiles are
+// handed out by an atomic counter: threads that finish early take more
+class TilePasses {
+  public:
+    TilePasses(const FrameInputs& frame, const KeptFrame& kept)
+        : frame_(frame),
+          kept_(kept),
+          tiles_x_((frame.settings.width + kTileSize - 1) / kTileSize),
+          tile_count_(tiles_in_a_pass(frame.settings)),
+          counters_(size_t(std::min(thread_count(frame.settings), tile_count_))) {}
+
+    // One pass over all tiles; pass(tile, radiance) renders a tile. A pixel loop's
+    // exception is rethrown here, after every thread has stopped
+    template <class Pass>
+    void run(HitSource source, const Pass& pass) {
         std::atomic<int> next{0};
-        std::vector<std::exception_ptr> errors(static_cast<size_t>(threads));
+        std::vector<std::exception_ptr> errors(counters_.size());
         const auto work = [&](int k) {
             try {
-                PixelShader shader(scene, modules, camera, settings, range, counters[k]);
+                const std::unique_ptr<CameraHitSource> hits = make_source(source, k);
+                PixelShader shader(frame_, counters_[size_t(k)]);
                 const PixelRadiance radiance = [&](const Vec2& uv) {
-                    return shader.radiance(uv);
+                    return shader.shade(uv, hits->take(uv));
                 };
-                for (int t = next++; t < tile_count; t = next++) {
-                    if (settings.cancel &&
-                        settings.cancel->load(std::memory_order_relaxed))
-                        break;
-                    const int x0 = (t % tiles_x) * kTileSize;
-                    const int y0 = (t / tiles_x) * kTileSize;
-                    const Tile tile{x0, y0, std::min(x0 + kTileSize, settings.width),
-                                    std::min(y0 + kTileSize, settings.height)};
-                    if (reuse || keep)
-                        shader.begin_tile(&kept->tiles[size_t(t)], reuse, keep, tile);
+                for (int t = next++; t < tile_count_; t = next++) {
+                    if (cancelled()) break;
+                    const Tile tile = tile_at(t);
+                    hits->begin_tile(tile, kept_.keep(t));
                     // Each tile starts without a shadow hint: which thread had the tile
                     // before must not change its work counts
                     shader.forget_blocker();
-                    pass(tile, radiance, shader);
-                    if (settings.tiles_done) ++*settings.tiles_done;
+                    pass(tile, radiance);
+                    hits->end_tile();
+                    if (frame_.settings.tiles_done) ++*frame_.settings.tiles_done;
                 }
             } catch (...) {
-                errors[k] = std::current_exception();
+                errors[size_t(k)] = std::current_exception();
             }
         };
         std::vector<std::thread> pool;
-        for (int k = 1; k < threads; ++k)
+        for (int k = 1; k < static_cast<int>(counters_.size()); ++k)
             pool.emplace_back(work, k);
         work(0);
         for (std::thread& t : pool)
@@ -455,56 +268,109 @@ FrameStats render(const Scene& scene, const View& view, const RenderSettings& se
         for (const std::exception_ptr& e : errors) {
             if (e) std::rethrow_exception(e);
         }
-    };
-    const bool adaptive = settings.sampling == PixelSampling::adaptive;
-    if (!detail::supersampled(settings) || adaptive) {
-        // Module 01's pixel loop: one ray through each pixel centre
-        run_pass(
-            [&](const Tile& tile, const PixelRadiance& radiance, PixelShader& shader) {
-                shader.trace_ahead(tile);
-                modules.render_tile(tile, radiance, view_out);
-                shader.end_tile();
-            });
+    }
+
+    bool cancelled() const {
+        return frame_.settings.cancel &&
+               frame_.settings.cancel->load(std::memory_order_relaxed);
+    }
+
+    // The threads' counts summed
+    FrameStats sums() const {
+        FrameStats stats;
+        stats.threads = static_cast<int>(counters_.size());
+        for (const WorkCounters& c : counters_) {
+            stats.camera_rays += c.camera_rays;
+            stats.camera_rays_reused += c.camera_rays_reused;
+            stats.camera_rays_in_packets +=
+                c.trace.packet_rays;  // only camera rays go in them
+            stats.shadow_rays += c.shadow_rays;
+            stats.shadow_rays_backfacing += c.backfacing;
+            stats.shadow_rays_disabled += c.disabled;
+            stats.intersection_tests += c.trace.intersection_tests;
+            stats.bvh_nodes += c.trace.bvh_nodes;
+        }
+        return stats;
+    }
+
+    // A tile's pixel loop asked more points than it may keep
+    bool hits_overflow() const {
+        return std::any_of(counters_.begin(), counters_.end(),
+                           [](const WorkCounters& c) { return c.hits_overflow; });
+    }
+
+  private:
+    Tile tile_at(int t) const {
+        const RenderSettings& s = frame_.settings;
+        const int x0 = (t % tiles_x_) * kTileSize, y0 = (t / tiles_x_) * kTileSize;
+        return Tile{x0, y0, std::min(x0 + kTileSize, s.width),
+                    std::min(y0 + kTileSize, s.height)};
+    }
+
+    std::unique_ptr<CameraHitSource> make_source(HitSource source, int k) {
+        const FrameInputs& f = frame_;
+        WorkCounters& c = counters_[size_t(k)];
+        switch (source) {
+            case HitSource::kept:
+                return std::make_unique<detail::KeptHits>(*kept_.reused(), f.scene,
+                                                          f.modules, f.camera, c);
+            case HitSource::traced_ahead:
+                return std::make_unique<detail::TracedAheadHits>(f.scene, f.modules,
+                                                                 f.camera, f.settings, c);
+            case HitSource::cast:
+                break;
+        }
+        return std::make_unique<detail::CastHits>(f.scene, f.modules, f.camera, c);
+    }
+
+    const FrameInputs& frame_;
+    const KeptFrame& kept_;
+    const int tiles_x_, tile_count_;
+    std::vector<WorkCounters> counters_;  // one per thread
+};
+
+}  // namespace
+
+FrameStats render(const Scene& scene, const View& view, const RenderSettings& settings,
+                  const ModuleTable& modules, Image& image) {
+    // Validate
+    validate(settings);
+    const auto start = std::chrono::steady_clock::now();
+    // Camera
+    const FrameInputs frame{scene, modules, make_camera(modules, view), settings,
+                            depth_range(scene, view)};
+    clear_image(settings, image);
+    const ImageView out = image.view();
+
+    // Tiles: module 01's pixel loop with the camera hits of the fastest source that
+    // serves it, or module 09's samples; the adaptive scheme refines in a second pass
+    KeptFrame kept(scene, view, settings, modules, size_t(tiles_in_a_pass(settings)));
+    TilePasses tiles(frame, kept);
+    const bool sampled = detail::supersampled(settings);
+    const bool adaptive = sampled && settings.sampling == PixelSampling::adaptive;
+    if (!sampled || adaptive) {
+        const HitSource source = kept.reused()                   ? HitSource::kept
+                                 : scene.traces_packets(modules) ? HitSource::traced_ahead
+                                                                 : HitSource::cast;
+        tiles.run(source, [&](const Tile& tile, const PixelRadiance& radiance) {
+            modules.render_tile(tile, radiance, out);
+        });
     } else {
-        run_pass([&](const Tile& tile, const PixelRadiance& radiance, PixelShader&) {
-            detail::render_tile_sampled(tile, radiance, view_out, settings, modules);
+        tiles.run(HitSource::cast, [&](const Tile& tile, const PixelRadiance& radiance) {
+            detail::render_tile_sampled(tile, radiance, out, settings, modules);
         });
     }
-    if (detail::supersampled(settings) && adaptive) {
+    if (adaptive) {
         const Image first = image;
-        run_pass([&](const Tile& tile, const PixelRadiance& radiance, PixelShader&) {
-            detail::refine_tile(tile, radiance, first, view_out, settings, modules);
+        tiles.run(HitSource::cast, [&](const Tile& tile, const PixelRadiance& radiance) {
+            detail::refine_tile(tile, radiance, first, out, settings, modules);
         });
     }
 
-    // Sum the counters
-    FrameStats stats;
-    stats.threads = threads;
+    // Sums
+    FrameStats stats = tiles.sums();
     stats.cancelled = settings.cancel && settings.cancel->load();
-    bool overflow = false;  // a tile's pixel loop asked more than it may keep
-    for (const Counters& c : counters) {
-        overflow |= c.hits_overflow;
-        stats.camera_rays += c.camera_rays;
-        stats.camera_rays_reused += c.camera_rays_reused;
-        stats.camera_rays_in_packets +=
-            c.trace.packet_rays;  // only camera rays go in them
-        stats.shadow_rays += c.shadow_rays;
-        stats.shadow_rays_backfacing += c.backfacing;
-        stats.shadow_rays_disabled += c.disabled;
-        stats.intersection_tests += c.trace.intersection_tests;
-        stats.bvh_nodes += c.trace.bvh_nodes;
-    }
-    // The frame's key, and whether its hits are kept. A cancelled frame leaves them
-    // forgotten, as its start left them (some tiles were never rendered)
-    if (kept && !reuse && !stats.cancelled) {
-        kept->valid = keep && !overflow;
-        kept->keyed = true;
-        kept->width = settings.width;
-        kept->height = settings.height;
-        kept->view = view;
-        std::copy(primitives, primitives + 3, kept->primitives);
-        kept->modules = hit_modules;
-    }
+    kept.finish(stats.cancelled, tiles.hits_overflow());
     stats.non_finite_pixels = count_non_finite(image);
     stats.milliseconds = std::chrono::duration<double, std::milli>(
                              std::chrono::steady_clock::now() - start)
@@ -519,13 +385,16 @@ PixelProbe probe_pixel(const Scene& scene, const View& view,
     if (i < 0 || j < 0 || i >= settings.width || j >= settings.height)
         throw Error("pixel (" + std::to_string(i) + ", " + std::to_string(j) +
                     ") is outside the image");
-    const PinholeCamera camera = make_camera(modules, view);
-    Counters counters;
-    PixelShader shader(scene, modules, camera, settings, depth_range(scene, view),
-                       counters);
+    const FrameInputs frame{scene, modules, make_camera(modules, view), settings,
+                            depth_range(scene, view)};
+    WorkCounters counters;
+    detail::CastHits cast(scene, modules, frame.camera, counters);
+    PixelShader shader(frame, counters);
     PixelProbe probe;
     probe.uv = modules.image_plane_point(i, j, settings.width, settings.height);
-    probe.L = shader.radiance(probe.uv, &probe.hit, &probe.ray);
+    const CameraSample sample = cast.take(probe.uv, &probe.ray);
+    probe.hit = sample.hit;
+    probe.L = shader.shade(probe.uv, sample);
     detail::probe_lights(scene, settings, modules, probe);
     return probe;
 }

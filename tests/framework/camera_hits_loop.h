@@ -1,12 +1,12 @@
-// The pixel loop and helpers of the adversarial tests of the camera hits render() keeps
-// from one frame for the next (test_camera_hits_orders.cpp,
-// test_camera_hits_changes.cpp): a student's module 01 with state, which asks for its
-// tile's points in one of several orders, may throw or raise the cancel flag, and counts
-// its calls.
+// The helpers of the camera hit sources' tests (raylab/camera_hit_sources.h;
+// test_camera_hits_cast.cpp, _ahead.cpp, _kept.cpp, _kept_key.cpp): a student's module 01
+// with state, which asks for its tile's points in one of several orders, may throw or
+// raise the cancel flag, and counts its calls; scenes and modules; bitwise comparisons.
 #pragma once
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstring>
@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "raylab/camera_hit_sources.h"
 #include "raylab/renderer.h"
 #include "raylab/scenes.h"
 #include "test_helpers.h"
@@ -179,6 +180,47 @@ inline size_t differing_pixels(const Image& a, const Image& b) {
     return diff;
 }
 
+// Two camera samples the same, bit for bit: the point, traced, and every field of the hit
+inline bool same_sample(const CameraHits::Sample& a, const CameraHits::Sample& b) {
+    if (std::memcmp(&a.uv, &b.uv, sizeof(Vec2)) != 0 || a.traced != b.traced ||
+        a.hit.has_value() != b.hit.has_value())
+        return false;
+    return !a.hit || std::memcmp(&*a.hit, &*b.hit, sizeof(Hit)) == 0;
+}
+
+// The tiles of a width x height image, as render() cuts it
+inline std::vector<Tile> image_tiles(int width, int height) {
+    std::vector<Tile> tiles;
+    for (int y0 = 0; y0 < height; y0 += kTileSize)
+        for (int x0 = 0; x0 < width; x0 += kTileSize)
+            tiles.push_back(Tile{x0, y0, std::min(x0 + kTileSize, width),
+                                 std::min(y0 + kTileSize, height)});
+    return tiles;
+}
+
+// The pixel centres of tile in the reference loop's order (rows top to bottom, columns
+// left to right)
+inline std::vector<Vec2> tile_points(const ModuleTable& modules, const Tile& tile,
+                                     int width, int height) {
+    std::vector<Vec2> points;
+    for (int j = tile.y0; j < tile.y1; ++j)
+        for (int i = tile.x0; i < tile.x1; ++i)
+            points.push_back(modules.image_plane_point(i, j, width, height));
+    return points;
+}
+
+// A floor under one light: frames of any size, cheap
+inline Scene lit_floor() {
+    Scene scene;
+    scene.materials.push_back(Material{"floor", Vec3(0.8f, 0.5f, 0.25f), Vec3(0.0f)});
+    scene.planes.push_back({Plane{Vec3(0.0f, 1.0f, 0.0f), 0.0f}, 0});
+    scene.lights.push_back(PointLight{Vec3(0.0f, 2.0f, 0.0f), Vec3(1.0f)});
+    scene.view = View{Vec3(0.3f, 2.0f, 3.0f), Vec3(0.0f, 0.0f, 0.0f),
+                      Vec3(0.0f, 1.0f, 0.0f), 50.0f};
+    scene.commit();
+    return scene;
+}
+
 // A floor plane, three spheres and no triangle, under two lights. The engine still traces
 // its camera rays ahead in packets (Scene::traces_packets asks the modules, not the
 // primitives), through a BVH of spheres alone
@@ -202,6 +244,12 @@ inline Scene spheres_on_a_plane() {
 // it leaves the engine off (Scene::traces_packets)
 inline std::optional<Hit> reference_sphere_elsewhere(const Ray& r, const Sphere& sphere) {
     return reference_modules().intersect_sphere(r, sphere);
+}
+
+// The reference's triangle test under another address: a module the key must tell apart
+inline std::optional<Hit> reference_triangle_elsewhere(const Ray& r, const Vec3& v0,
+                                                       const Vec3& v1, const Vec3& v2) {
+    return reference_modules().intersect_triangle(r, v0, v1, v2);
 }
 
 // The reference camera ray, but not a valid ray (w = 0) left of u = -0.3 and through

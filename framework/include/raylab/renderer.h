@@ -57,13 +57,13 @@ inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 26;
 /// whose key is the last frame's (the camera has stopped: the next change may well be a
 /// light), and shades them in the frames after that, while the key stays and each
 /// pixel's (u, v) is the one kept (a pixel loop that calls in another order casts
-/// afresh). A frame with a new key (a camera move) keeps nothing: filling the hits costs
-/// a frame about 8 % (21 MB written at 640x480), which only a frame that reuses them
-/// repays. Modules are taken to be functions of their arguments (the contract). The owner
-/// calls clear() when the scene's geometry changes in place. One sample per pixel and at
-/// most kMaxPixels pixels (68 bytes each): larger or supersampled frames neither fill nor
-/// use it, and a frame whose pixel loop asks more than two points a pixel of a tile (a
-/// student's supersampling in module 01) keeps none.
+/// afresh). A frame with a new key (a camera move) keeps nothing: filling the hits writes
+/// 68 bytes a pixel, which only a frame that reuses them repays. Where the hits come from
+/// is raylab/camera_hit_sources.h (internal). Modules are taken to be functions of their
+/// arguments (the contract). The owner calls clear() when the scene's geometry changes in
+/// place. One sample per pixel and at most kMaxPixels pixels (68 bytes each): larger or
+/// supersampled frames neither fill nor use it, and a frame whose pixel loop asks more
+/// than two points a pixel of a tile (a student's supersampling in module 01) keeps none.
 struct CameraHits {
     static constexpr std::int64_t kMaxPixels = std::int64_t{1} << 20;  // 1280 x 800
     struct Sample {

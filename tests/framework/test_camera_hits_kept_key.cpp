@@ -1,7 +1,9 @@
-// Adversarial cases for the camera hits render() keeps (RenderSettings::camera_hits),
-// continued from test_camera_hits_orders.cpp: clear(), invalid camera rays and their
-// count, the engine against the module path, changed views, modules and geometry, and
-// the bound on what a tile keeps.
+// What the camera hits kept from the last frame depend on (CameraHits' key,
+// raylab/renderer.h): the image size, the view, the primitive counts and the modules that
+// make hits, and the owner's clear(). A change after the hit (a light, the shading mode,
+// shadows) reuses them; anything they depend on, by as little as one float step, casts
+// afresh; hits kept on the engine serve the module path bit for bit. Every frame must
+// give the image of a fresh render.
 #include <doctest/doctest.h>
 
 #include "camera_hits_loop.h"
@@ -9,7 +11,126 @@
 using namespace raylab;
 using namespace raylab::camera_hits_test;
 
-TEST_SUITE("kept camera hits adversarial") {
+TEST_SUITE("camera hits kept") {
+    // CameraHits: a change after the hit shades the kept hits, casting no camera ray,
+    // and gives the image of a frame rendered afresh; anything a hit depends on casts
+    TEST_CASE("kept camera hits serve a light change and nothing they depend on") {
+        Scene scene = cornell_box();
+        const ModuleTable modules = reference_modules();
+        RenderSettings settings;
+        settings.width = 64;
+        settings.height = 48;
+        const std::uint64_t pixels = 64 * 48;
+        CameraHits kept;
+        settings.camera_hits = &kept;
+        Image first, image, fresh;
+        // A first frame notes its key and keeps no hit; the next of the same key keeps
+        // them (both cast every camera ray)
+        FrameStats s = render(scene, scene.view, settings, modules, first);
+        CHECK(s.camera_rays == pixels);
+        CHECK(s.camera_rays_reused == 0);
+        CHECK(kept.keyed);
+        CHECK_FALSE(kept.valid);
+        s = render(scene, scene.view, settings, modules, first);
+        CHECK(s.camera_rays == pixels);
+        CHECK(s.camera_rays_reused == 0);
+        REQUIRE(kept.valid);
+
+        // The light moves, shadows off and on, normals mode: hits reused, same image as
+        // a render without kept hits
+        RenderSettings plain = settings;
+        plain.camera_hits = nullptr;
+        scene.lights[0].p += Vec3(0.3f, -0.2f, 0.1f);
+        for (const bool shadows : {true, false}) {
+            for (const ShadingMode mode : {ShadingMode::lambert, ShadingMode::normals}) {
+                settings.shadows = plain.shadows = shadows;
+                settings.mode = plain.mode = mode;
+                s = render(scene, scene.view, settings, modules, image);
+                render(scene, scene.view, plain, modules, fresh);
+                CHECK(s.camera_rays == 0);
+                CHECK(s.camera_rays_reused == pixels);
+                CHECK(image.pixels == fresh.pixels);
+            }
+        }
+        CHECK(image.pixels != first.pixels);  // the light did move
+
+        // The view, the size, a module that makes hits, the geometry's counts: a new key,
+        // cast again. A new key's first frame keeps nothing (a camera that moves every
+        // frame would never reuse it); its second keeps, and the third reuses
+        View moved = scene.view;
+        moved.eye.x += 0.01f;
+        s = render(scene, moved, settings, modules, image);
+        CHECK(s.camera_rays == pixels);
+        CHECK(s.camera_rays_reused == 0);
+        CHECK_FALSE(kept.valid);
+        s = render(scene, moved, settings, modules, image);
+        CHECK(s.camera_rays == pixels);
+        CHECK(kept.valid);
+        s = render(scene, moved, settings, modules, image);
+        CHECK(s.camera_rays_reused == pixels);
+        // The module path gives the engine's hits bit for bit: kept hits serve it
+        ModuleTable module_path = modules;
+        module_path.engine = nullptr;
+        s = render(scene, moved, settings, module_path, image);
+        CHECK(s.camera_rays_reused == pixels);
+        // Another triangle module casts; another sphere module does not, while the scene
+        // has no spheres
+        ModuleTable other = module_path;
+        other.intersect_triangle = &reference_triangle_elsewhere;
+        s = render(scene, moved, settings, other, image);
+        CHECK(s.camera_rays == pixels);
+        render(scene, moved, settings, other, image);  // keeps for other
+        other.intersect_sphere = &reference_sphere_elsewhere;
+        s = render(scene, moved, settings, other, image);
+        CHECK(s.camera_rays_reused == pixels);
+        settings.width = 63;
+        s = render(scene, moved, settings, other, image);
+        CHECK(s.camera_rays == 63 * 48);
+        render(scene, moved, settings, other, image);  // keeps for other at 63 x 48
+        scene.spheres.push_back({Sphere{Vec3(0.0f), 0.3f}, 0});
+        scene.commit();
+        s = render(scene, moved, settings, module_path, image);
+        CHECK(s.camera_rays == 63 * 48);
+        render(scene, moved, settings, module_path, image);  // keeps with the sphere
+        ModuleTable other_sphere_only = module_path;  // the sphere module counts now
+        other_sphere_only.intersect_sphere = &reference_sphere_elsewhere;
+        s = render(scene, moved, settings, other_sphere_only, image);
+        CHECK(s.camera_rays == 63 * 48);
+        render(scene, moved, settings, module_path, image);  // module_path's key again
+        render(scene, moved, settings, module_path, image);  // and its hits kept
+        plain = settings;
+        plain.camera_hits = nullptr;
+        render(scene, moved, plain, module_path, fresh);
+        s = render(scene, moved, settings, module_path, image);
+        CHECK(s.camera_rays_reused == 63 * 48);
+        CHECK(image.pixels == fresh.pixels);  // the sphere is in both
+
+        // Supersampled frames neither use nor fill them
+        settings.spp = 4;
+        s = render(scene, moved, settings, module_path, image);
+        CHECK(s.camera_rays_reused == 0);
+        CHECK(kept.valid);
+
+        // Nor do frames above CameraHits::kMaxPixels (68 bytes a pixel)
+        const Scene floor = lit_floor();
+        RenderSettings big;
+        big.width = 1025;
+        big.height = 1024;
+        big.camera_hits = &kept;
+        render(floor, floor.view, big, modules, image);
+        s = render(floor, floor.view, big, modules, image);
+        CHECK(s.camera_rays == 1025 * 1024);
+        CHECK(s.camera_rays_reused == 0);
+
+        // A cancelled frame leaves no kept hits behind
+        settings.spp = 1;
+        settings.height = 40;
+        std::atomic<bool> cancel{true};
+        settings.cancel = &cancel;
+        render(scene, moved, settings, module_path, image);
+        CHECK_FALSE(kept.valid);
+    }
+
     // clear() on a CameraHits never used, twice in a row, between the frame that keeps
     // and the one that would reuse, and after a frame that reused: each time the next
     // frame reuses nothing, and the round after it reuses all, with the fresh image
@@ -55,83 +176,6 @@ TEST_SUITE("kept camera hits adversarial") {
         REQUIRE(kept.valid);
         kept.clear();  // between keeping and reusing
         round("between the frame that kept and the one that would reuse");
-        reset_loop();
-    }
-
-    // Points whose camera ray is not valid are kept as such (no hit) and shaded with
-    // the background of the frame that reuses them, which may differ from the keeping
-    // frame's
-    TEST_CASE("points without a valid camera ray show the reusing frame's background") {
-        const Scene scene = cornell_box();
-        LoopState& st = loop_state();
-        for (const bool engine : {true, false}) {
-            ModuleTable modules = adversarial_table(engine);
-            modules.camera_ray = &holed_camera_ray;
-            st.table = &modules;
-            for (const Order order : {Order::reference_like, Order::leave_midway}) {
-                st.order = order;
-                INFO("engine " << engine << ", " << std::string(name(order)));
-                RenderSettings settings;
-                settings.width = 41;
-                settings.height = 33;
-                settings.threads = 2;
-                Image fresh, image;
-                CameraHits kept;
-                settings.camera_hits = &kept;
-                render_frame(scene, settings, modules, image);
-                render_frame(scene, settings, modules, image);
-                REQUIRE(kept.valid);
-                settings.background = Vec3(0.25f, 0.5f, 1.0f);
-                const Frame f = render_frame(scene, settings, modules, image);
-                CHECK(f.stats.camera_rays == 0);
-                settings.camera_hits = nullptr;
-                render_frame(scene, settings, modules, fresh);
-                CHECK(differing_pixels(image, fresh) == 0);
-                CHECK(image.at(0, 0) == settings.background);  // (w = 0 there)
-            }
-        }
-        reset_loop();
-    }
-
-    // A point without a valid camera ray casts no ray in a fresh frame (camera_rays
-    // leaves it out), so a frame that reuses it reuses no camera ray either: its
-    // camera_rays_reused must be the rays a fresh frame casts, as the viewer's log line
-    // 'camera hits reused: N' and FrameStats ("hits taken from settings.camera_hits")
-    // say. Expected: the pixels whose ray holed_camera_ray leaves valid
-    TEST_CASE("a frame that reuses counts as reused only points that had a camera ray") {
-        const Scene scene = cornell_box();
-        LoopState& st = loop_state();
-        st.order = Order::reference_like;
-        RenderSettings settings;
-        settings.width = 41;
-        settings.height = 33;
-        std::uint64_t valid = 0;  // pixels with a valid ray (holed_camera_ray)
-        const ModuleTable& ref = reference_modules();
-        for (int j = 0; j < settings.height; ++j) {
-            for (int i = 0; i < settings.width; ++i) {
-                const Vec2 uv =
-                    ref.image_plane_point(i, j, settings.width, settings.height);
-                valid += uv.x >= -0.3f && uv.y != 0.0f;
-            }
-        }
-        REQUIRE(valid < std::uint64_t(settings.width * settings.height));
-        for (const bool engine : {true, false}) {
-            ModuleTable modules = adversarial_table(engine);
-            modules.camera_ray = &holed_camera_ray;
-            st.table = &modules;
-            INFO("engine " << engine);
-            settings.camera_hits = nullptr;
-            Image image;
-            CHECK(render_frame(scene, settings, modules, image).stats.camera_rays ==
-                  valid);
-            CameraHits kept;
-            settings.camera_hits = &kept;
-            render_frame(scene, settings, modules, image);
-            render_frame(scene, settings, modules, image);
-            const Frame f = render_frame(scene, settings, modules, image);
-            CHECK(f.stats.camera_rays == 0);
-            CHECK(f.stats.camera_rays_reused == valid);
-        }
         reset_loop();
     }
 
@@ -279,53 +323,60 @@ TEST_SUITE("kept camera hits adversarial") {
         reset_loop();
     }
 
-    // A pixel loop that asks for more than twice a tile's pixels (a student's
-    // supersampling in module 01) keeps nothing in that frame: what a tile holds stays
-    // bounded (68 bytes a point), the next frames cast again and give the fresh image,
-    // and a loop within the bound keeps and reuses as before (found in review: nothing
-    // bounded it, and 16 points a pixel at 1280 x 800 would have kept 1.1 GB)
-    TEST_CASE("a pixel loop that asks too many points a pixel keeps none of them") {
+    // Sizes that change the tile count both ways while the tiles' arrays keep their
+    // memory (clear() keeps it), sizes of the same tile count, sizes that come back, and
+    // two sizes of the same tile count in turn (a new key each frame: nothing kept,
+    // nothing reused)
+    TEST_CASE("image sizes that change between frames never reuse another size's hits") {
         const Scene scene = cornell_box();
         LoopState& st = loop_state();
+        // 40x24, 33x24 and 33x29 have six tiles each: only the width, then only the
+        // height tells their hits apart
+        const int sizes[][2] = {{40, 24}, {33, 24}, {33, 29}, {17, 3}, {70, 50}, {1, 1},
+                                {16, 16}, {15, 17}, {40, 24}, {3, 41}, {70, 50}, {64, 1}};
         for (const bool engine : {true, false}) {
             const ModuleTable modules = adversarial_table(engine);
             st.table = &modules;
-            for (const int threads : {1, 2}) {
-                INFO("engine " << engine << ", " << threads << " threads");
+            for (const Order order : {Order::reference_like, Order::backwards_from_middle,
+                                      Order::leave_midway}) {
+                st.order = order;
                 RenderSettings settings;
-                settings.width = 37;  // full tiles and cut ones
-                settings.height = 21;
-                settings.threads = threads;
-                st.order = Order::over_the_bound;
-                Image fresh, image;
-                const std::int64_t calls =
-                    render_frame(scene, settings, modules, fresh).calls;
-                CHECK(calls == 3 * 37 * 21);
+                settings.threads = 3;
                 CameraHits kept;
-                settings.camera_hits = &kept;
-                for (int frame = 0; frame < 4; ++frame) {
-                    CAPTURE(frame);
+                for (const auto& size : sizes) {
+                    settings.width = size[0];
+                    settings.height = size[1];
+                    settings.camera_hits = nullptr;
+                    Image fresh, image;
+                    const std::int64_t calls =
+                        render_frame(scene, settings, modules, fresh).calls;
+                    settings.camera_hits = &kept;
+                    for (int frame = 0; frame < 3; ++frame) {
+                        INFO("engine " << engine << ", " << std::string(name(order))
+                                       << ", " << size[0] << "x" << size[1] << ", frame "
+                                       << frame);
+                        const Frame f = render_frame(scene, settings, modules, image);
+                        CHECK(differing_pixels(image, fresh) == 0);
+                        check_counts(f);
+                        CHECK(f.stats.camera_rays_reused ==
+                              (frame == 2 ? std::uint64_t(calls) : 0u));
+                    }
+                }
+                // Two sizes in turn: each frame a new key
+                for (int frame = 0; frame < 6; ++frame) {
+                    const auto& size = sizes[frame % 2];
+                    settings.width = size[0];
+                    settings.height = size[1];
+                    settings.camera_hits = nullptr;
+                    Image fresh, image;
+                    render_frame(scene, settings, modules, fresh);
+                    settings.camera_hits = &kept;
+                    INFO("engine " << engine << ", alternating sizes, frame " << frame);
                     const Frame f = render_frame(scene, settings, modules, image);
                     CHECK(differing_pixels(image, fresh) == 0);
                     CHECK(f.stats.camera_rays_reused == 0);
                     CHECK_FALSE(kept.valid);
-                    CHECK(kept.keyed);
-                    const int tiles_x = (37 + kTileSize - 1) / kTileSize;
-                    for (size_t t = 0; t < kept.tiles.size(); ++t) {
-                        const int x0 = int(t) % tiles_x * kTileSize;
-                        const int y0 = int(t) / tiles_x * kTileSize;
-                        const size_t pixels = size_t(std::min(kTileSize, 37 - x0)) *
-                                              size_t(std::min(kTileSize, 21 - y0));
-                        CHECK(kept.tiles[t].size() <= 2 * pixels);
-                    }
                 }
-                // Within the bound, the same CameraHits keeps and reuses again
-                st.order = Order::many_times;
-                render_frame(scene, settings, modules, fresh);  // keeps: same key
-                REQUIRE(kept.valid);
-                const Frame f = render_frame(scene, settings, modules, image);
-                CHECK(f.stats.camera_rays_reused == std::uint64_t(2 * 37 * 21));
-                CHECK(differing_pixels(image, fresh) == 0);
             }
         }
         reset_loop();
