@@ -17,10 +17,10 @@
 # with RAYLAB_NO_AVX512=1 and with RAYLAB_NO_AVX2=1, on the reference engine's AVX2 and
 # baseline versions (solutions/engine_simd.h), which a processor with AVX-512 would not
 # choose.
-# Each is a unity build (RAYLAB_UNITY_BUILD: the framework's libraries and the test suites
-# in a few large files; the reference's modules one file each, as everywhere), since what
-# a configuration proves is how the compiler and its flags treat the numerics, not that
-# each file compiles alone (the strict build of dev.sh test proves that).
+# Each is a unity build (RAYLAB_UNITY_BUILD: the framework's libraries and the stress suite
+# in a few large files; the reference's modules and the framework's tests one file each),
+# since what a configuration proves is how the compiler and its flags treat the numerics,
+# not that each file compiles alone (the strict build of dev.sh test proves that).
 # --quick: g++ -O2 -DRAYLAB_NO_SIMD and clang++ -O3 -march=native.
 # Build folders: build-stress/<compiler>-<flags>. Uses ccache when it is installed;
 # RAYLAB_STRESS_JOBS sets the build parallelism (default 2). Prints each configuration's
