@@ -319,8 +319,9 @@ cmd_test() {
 
     timed "clang-format check" cmd_format_check
 
-    # Address and undefined-behaviour sanitizers on the unit tests (no GUI: Mesa leaks); a
-    # unity build (RAYLAB_UNITY_BUILD), since the strict build compiles every file alone
+    # Address and undefined-behaviour sanitizers on the unit tests (no GUI: Mesa leaks); the
+    # libraries and the stress suite as unity builds (RAYLAB_UNITY_BUILD), since the strict
+    # build compiles every file alone
     timed "sanitizer build ($ASAN_DIR/)" build_asan
     local select=(-L unit) count
     count=$(cd "$ASAN_DIR" && ctest -N -L unit | sed -n 's/^Total Tests: //p')
