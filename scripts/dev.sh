@@ -304,7 +304,7 @@ times_table() {
         note "slowest tests in $dir/:"
         awk '/^---/ { exit }
             { t = $NF; name = $0; sub(/ [0-9]+ [0-9.eE+-]+$/, "", name)
-              printf "%9.1f s  %s\n", t, name }' "$cost" | sort -rn | head -n 8 | sed 's/^/    /'
+              printf "%9.1f s  %s\n", t, name }' "$cost" | sort -rn | sed -n '1,8s/^/    /p'
     fi
 }
 
