@@ -2,6 +2,7 @@
 #   make run                                 viewer (or build/cornell.png without a display)
 #   make run ARGS="--reference all"          extra flags for the viewer / raylab-render
 #   make test                                what CI runs
+#   make check                               the edit loop: strict build, format, unit tests
 #   make grade SUBMISSION=~/handin GRADE_OUT=grades/alice
 #   make release OUT=/tmp/raylab-student
 #   make grade-class DIR=~/handins ARGS="-j 2"
@@ -20,10 +21,10 @@ export GRADE_OUT
 endif
 
 .DEFAULT_GOAL := help
-.PHONY: run test build grade grade-reference grade-class gradescope release bench fuzz \
+.PHONY: run test check build grade grade-reference grade-class gradescope release bench fuzz \
 	format clean help
 
-run test build grade grade-reference bench fuzz format clean help:
+run test check build grade grade-reference bench fuzz format clean help:
 	$(DEV) $@ $(ARGS)
 
 release gradescope:

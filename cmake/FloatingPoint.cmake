@@ -1,4 +1,4 @@
-# The floating-point model of the reference and the framework (issue 8, B7).
+# The floating-point model of the reference and the framework.
 #
 # The watertight triangle test relies on an edge shared by two triangles giving exactly
 # opposite edge functions, x1 * y2 - y1 * x2 and x2 * y1 - y2 * x1. A compiler that fuses

@@ -12,8 +12,14 @@
 #                      target (build-fuzz/, when clang is installed), the users' paths end to
 #                      end (tests/e2e/user_paths.sh: a student release and its checks, the
 #                      student's first commands, grade and Run tests in it, grade-class),
-#                      scripts/stress-matrix.sh (its six configurations, when it exists),
-#                      then every test in build-ci/ (GUI tests under Xvfb)
+#                      scripts/stress-matrix.sh (its five configurations, when it exists),
+#                      then every test in build-ci/ (GUI tests under Xvfb); ends with each
+#                      step's time and the slowest tests. Compiles through ccache, its cache
+#                      in build-cache/
+#   check              the edit loop's part of test: the strict build (build-ci/),
+#                      clang-format and the unit tests in build-ci/ (ctest -L unit); the
+#                      sanitizers, fuzzing, the end-to-end paths, the stress matrix and the
+#                      grading and GUI tests are left to test
 #   build              configure and build everything in build/ (Release)
 #   grade [ARGS]       grade exercises (scripts/grade.sh [--timeout S] [--points N]
 #                      [--expect full|not-started]); env SUBMISSION=DIR grades a hand-in,
@@ -39,7 +45,8 @@
 # waits and says so.
 #
 # Environment: RAYLAB_NO_INSTALL=1 skips the package check (non-Debian systems);
-# CMAKE_ARGS="..." adds options to every configure; CI=true is honoured (nothing prompts).
+# CMAKE_ARGS="..." adds options to every configure; CI=true is honoured (nothing prompts);
+# CCACHE_DIR chooses the cache of test and check (default build-cache/).
 set -euo pipefail
 # shellcheck source=lib/common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
@@ -224,7 +231,8 @@ fuzz_run() {
     if [[ ! -f $FUZZ_DIR/CMakeCache.txt ]]; then
         step "Configuring $FUZZ_DIR/ (clang, libFuzzer, ASan, UBSan)"
         : >"$FUZZ_DIR/$MARKER"
-        CC=clang CXX=clang++ cmake -S fuzz -B "$FUZZ_DIR" -G Ninja >"$FUZZ_DIR/configure.log" 2>&1 ||
+        CC=clang CXX=clang++ cmake -S fuzz -B "$FUZZ_DIR" -G Ninja -DRAYLAB_UNITY_BUILD=ON \
+            >"$FUZZ_DIR/configure.log" 2>&1 ||
             { cat "$FUZZ_DIR/configure.log" >&2; die "configuring $FUZZ_DIR/ failed"; }
     fi
     compile "$FUZZ_DIR" fuzz-obj fuzz-view fuzz-options
@@ -241,21 +249,83 @@ cmd_fuzz() {
     fuzz_run "$seconds"
 }
 
+# ccache for every compile of test and check, also in the folders their scripts configure
+# (the student release, the add-module copy, the Gradescope package, the stress matrix):
+# CMake takes the launcher from the environment when it configures a new folder. The cache
+# is build-cache/ of this tree, paths in it relative to the build folder (base_dir), so a
+# build of the same sources laid out the same way hits it, in this run or the next
+use_ccache() {
+    if ! have ccache; then
+        warn "ccache is missing: every build compiles from scratch (scripts/install-deps.sh test)"
+        return
+    fi
+    export CCACHE_DIR=${CCACHE_DIR:-$RAYLAB_ROOT/build-cache}
+    export CCACHE_BASEDIR=$RAYLAB_ROOT
+    # A fresh clone or copy has just written its files: trust the content hash alone
+    export CCACHE_SLOPPINESS=include_file_ctime,include_file_mtime
+    export CMAKE_CXX_COMPILER_LAUNCHER=${CMAKE_CXX_COMPILER_LAUNCHER:-ccache}
+    export CMAKE_C_COMPILER_LAUNCHER=${CMAKE_C_COMPILER_LAUNCHER:-ccache}
+    mkdir -p "$CCACHE_DIR"
+    if [[ $CCACHE_DIR == "$RAYLAB_ROOT/build-cache" ]]; then : >"$CCACHE_DIR/$MARKER"; fi
+    CCACHE_BEFORE=$(ccache_counts)
+    note "ccache: $CCACHE_DIR/"
+}
+
+# "HITS MISSES" of the cache so far
+ccache_counts() {
+    ccache --print-stats 2>/dev/null | awk -F'\t' '
+        $1 == "direct_cache_hit" || $1 == "preprocessed_cache_hit" { hit += $2 }
+        $1 == "cache_miss" { miss += $2 }
+        END { print hit + 0, miss + 0 }'
+}
+
+# timed LABEL COMMAND...: run COMMAND, keep its time for times_table
+declare -a STEP_TIMES=()
+timed() {
+    local label=$1 t=$SECONDS rc=0
+    shift
+    "$@" || rc=$?
+    STEP_TIMES+=("$(printf '%5d s  %s' $((SECONDS - t)) "$label")")
+    return "$rc"
+}
+
+# Each step's time, ccache's hits and ctest's slowest tests in DIR
+times_table() {
+    local dir=$1 total=$2
+    step "Times (on $JOBS cores; $(uptime | sed 's/.*load average/load average/'))"
+    printf '    %s\n' "${STEP_TIMES[@]}"
+    printf '    %5d s  in all\n' "$total"
+    if [[ -n ${CCACHE_BEFORE:-} ]]; then
+        local before after
+        read -r -a before <<<"$CCACHE_BEFORE"
+        read -r -a after <<<"$(ccache_counts)"
+        note "ccache: $((after[0] - before[0])) compiles from the cache," \
+            "$((after[1] - before[1])) compiled"
+    fi
+    local cost=$dir/Testing/Temporary/CTestCostData.txt
+    if [[ -f $cost ]]; then
+        note "slowest tests in $dir/:"
+        awk '/^---/ { exit }
+            { t = $NF; name = $0; sub(/ [0-9]+ [0-9.eE+-]+$/, "", name)
+              printf "%9.1f s  %s\n", t, name }' "$cost" | sort -rn | sed -n '1,8s/^/    /p'
+    fi
+}
+
 cmd_test() {
     no_args test "$@"
     install_deps build libs gui format test fuzz
     local t0=$SECONDS
+    use_ccache
 
     # Warnings as errors, GUI included, in a folder of its own (build/ stays lenient)
-    configure "$CI_DIR" -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WERROR=ON
-    compile "$CI_DIR"
+    timed "strict build ($CI_DIR/)" build_ci
 
-    cmd_format_check
+    timed "clang-format check" cmd_format_check
 
-    # Address and undefined-behaviour sanitizers on the unit tests (no GUI: Mesa leaks)
-    configure "$ASAN_DIR" -DCMAKE_BUILD_TYPE=Debug -DRAYLAB_SANITIZE=ON -DRAYLAB_WITH_GUI=OFF \
-        -DRAYLAB_WERROR=ON
-    compile "$ASAN_DIR"
+    # Address and undefined-behaviour sanitizers on the unit tests (no GUI: Mesa leaks); the
+    # libraries and the stress suite as unity builds (RAYLAB_UNITY_BUILD), since the strict
+    # build compiles every file alone
+    timed "sanitizer build ($ASAN_DIR/)" build_asan
     local select=(-L unit) count
     count=$(cd "$ASAN_DIR" && ctest -N -L unit | sed -n 's/^Total Tests: //p')
     if [[ ${count:-0} == 0 ]]; then
@@ -265,11 +335,13 @@ cmd_test() {
     step "Unit tests under the sanitizers (ctest ${select[*]} in $ASAN_DIR/)"
     ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0} \
         UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
-        run_ctest "$ASAN_DIR" "${select[@]}" || die "sanitizer tests failed (output above)"
+        timed "unit tests under the sanitizers" run_ctest "$ASAN_DIR" "${select[@]}" ||
+        die "sanitizer tests failed (output above)"
+    timed "stress suite on the engine's narrower versions ($ASAN_DIR/)" stress_narrower
 
     # A few seconds of each fuzz target, replaying every crash kept in fuzz/crashes/
     if have clang++; then
-        fuzz_run 5
+        timed "fuzzing ($FUZZ_DIR/: build, 5 s a target)" fuzz_run 5
     else
         warn "clang++ is missing: the fuzz targets did not run (scripts/install-deps.sh fuzz)"
     fi
@@ -278,20 +350,62 @@ cmd_test() {
     # writes its golden data with the build above
     if [[ -f tests/e2e/user_paths.sh ]]; then
         step "The users' paths end to end (tests/e2e/user_paths.sh, in $CI_DIR/e2e/)"
-        RELEASE_BUILD_DIR=$RAYLAB_ROOT/$CI_DIR bash tests/e2e/user_paths.sh "$RAYLAB_ROOT" \
-            "$RAYLAB_ROOT/$CI_DIR/e2e" || die "tests/e2e/user_paths.sh failed (output above)"
+        RELEASE_BUILD_DIR=$RAYLAB_ROOT/$CI_DIR timed "users' paths (tests/e2e/user_paths.sh)" \
+            bash tests/e2e/user_paths.sh "$RAYLAB_ROOT" "$RAYLAB_ROOT/$CI_DIR/e2e" ||
+            die "tests/e2e/user_paths.sh failed (output above)"
     fi
     if [[ -f scripts/stress-matrix.sh ]]; then
-        # All six configurations: g++ and clang++, -O0, -O2 and -O3 -march=native (about 2
-        # minutes on 2 cores without ccache)
+        # Its five configurations; g++ -O0 is the sanitizer build above
         step "The numerical stress matrix (scripts/stress-matrix.sh)"
-        bash scripts/stress-matrix.sh ||
+        timed "stress matrix (scripts/stress-matrix.sh)" bash scripts/stress-matrix.sh ||
             die "scripts/stress-matrix.sh failed (output above)"
     fi
 
     # Last, so that the output ends with ctest's summary
     step "All tests in $CI_DIR/ (ctest; $((SECONDS - t0)) s so far)"
-    run_ctest "$CI_DIR"
+    timed "all tests in $CI_DIR/ (ctest)" run_ctest "$CI_DIR"
+    times_table "$CI_DIR" $((SECONDS - t0))
+}
+
+# The stress suite of the sanitizer build again on the engine's AVX2 and baseline versions,
+# which a processor with AVX-512 or AVX2 does not choose by itself: with the ctest run above,
+# this is the stress matrix's g++ -O0 configuration (scripts/stress-matrix.sh)
+stress_narrower() {
+    local suite=$ASAN_DIR/tests/stress/raylab-stress-tests narrower
+    [[ -x $suite ]] || return 0 # a student release: no reference, no stress suite
+    for narrower in RAYLAB_NO_AVX512 RAYLAB_NO_AVX2; do
+        step "The stress suite under the sanitizers with $narrower=1"
+        env "$narrower=1" ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0}" \
+            UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}" \
+            "$suite" --no-intro || die "the stress suite failed with $narrower=1 (output above)"
+    done
+}
+
+# The strict build: what test builds first and CI checks
+build_ci() {
+    configure "$CI_DIR" -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WERROR=ON
+    compile "$CI_DIR"
+}
+
+# The sanitizer build (the asan preset's options)
+build_asan() {
+    configure "$ASAN_DIR" -DCMAKE_BUILD_TYPE=Debug -DRAYLAB_SANITIZE=ON -DRAYLAB_WITH_GUI=OFF \
+        -DRAYLAB_WERROR=ON -DRAYLAB_UNITY_BUILD=ON
+    compile "$ASAN_DIR"
+}
+
+cmd_check() {
+    no_args check "$@"
+    install_deps build libs format test
+    local t0=$SECONDS
+    use_ccache
+    timed "strict build ($CI_DIR/)" build_ci
+    timed "clang-format check" cmd_format_check
+    step "Unit tests (ctest -L unit in $CI_DIR/)"
+    timed "unit tests in $CI_DIR/ (ctest -L unit)" run_ctest "$CI_DIR" -L unit
+    times_table "$CI_DIR" $((SECONDS - t0))
+    note "the sanitizers, fuzzing, the end-to-end paths, the stress matrix, grading and the" \
+        "GUI tests run in ./scripts/dev.sh test"
 }
 
 cmd_grade() {
@@ -416,6 +530,7 @@ command=${1:-help}
 case $command in
     run) cmd_run "$@" ;;
     test) cmd_test "$@" ;;
+    check) cmd_check "$@" ;;
     build) cmd_build "$@" ;;
     grade) cmd_grade "$@" ;;
     grade-reference) instructor_only "$command"; cmd_grade --reference "$@" ;;

@@ -13,7 +13,8 @@
 #            gui      running the GUI tests headless: Xvfb, xauth, Mesa, xdotool (alias gui-test)
 #            format   clang-format (the style check of `scripts/dev.sh test`)
 #            test     python3 (the docs' checks, the class and end-to-end tests of
-#                     `scripts/dev.sh test`)
+#                     `scripts/dev.sh test`), ccache (the compiler cache of `test` and
+#                     `check`)
 #            fuzz     clang 14 and its runtimes: libFuzzer targets, the stress matrix
 #            bench    Embree (the peer of the benchmark)
 #            all      every group above (grade is part of build and libs)
@@ -45,7 +46,7 @@ group_packages() {
             libstb-dev doctest-dev nlohmann-json3-dev libseccomp-dev bubblewrap jq ;;
         gui | gui-test) echo xvfb xauth libgl1-mesa-dri xdotool ;;
         format) echo clang-format ;;
-        test) echo python3 ;;
+        test) echo python3 ccache ;;
         fuzz) echo clang libclang-rt-14-dev ;;
         bench) echo libembree-dev ;;
         *) return 1 ;;

@@ -1,4 +1,5 @@
-// Closed triangle meshes for the stress tests: octahedron (fans of 4), cube, icosphere.
+// Closed triangle meshes for the stress tests (octahedron: fans of 4, cube, icosphere),
+// and scenes built by hand.
 #pragma once
 
 #include <array>
@@ -7,6 +8,7 @@
 
 #include "raylab/math.h"
 #include "raylab/scene.h"
+#include "test_helpers.h"
 
 namespace raylab {
 
@@ -102,6 +104,19 @@ inline std::vector<Vec3> vertex_and_edge_points(const Mesh& m) {
             for (const float s : {0.5f, 0.25f, 1.0f / 3.0f})
                 targets.push_back(m.v[t[e]] + s * (m.v[t[(e + 1) % 3]] - m.v[t[e]]));
     return targets;
+}
+
+// A scene with one default material, for primitives added by hand
+inline Scene one_material_scene() {
+    Scene s;
+    s.materials.push_back(Material{});
+    return s;
+}
+
+// Does the scene, on the reference's modules, hit anything along r?
+inline bool scene_hits(const Scene& s, const Ray& r) {
+    TraceCounters counters;
+    return s.closest_hit(reference_modules(), r, counters).has_value();
 }
 
 }  // namespace raylab

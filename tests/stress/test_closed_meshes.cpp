@@ -1,4 +1,4 @@
-// The whole class of issue 8's B1: a ray from inside a closed mesh can never escape it.
+// A ray from inside a closed mesh can never escape it.
 // Closed meshes (octahedron: fans of 4, cube, icosphere) at scales 0.01-10 and offsets up
 // to 1e5, rays from inside aimed exactly at vertices and at edge points, from random and
 // axis-aligned directions, through the bare kernel and through Scene: 0 leaks.

@@ -1,5 +1,5 @@
-// Issue 9's packets (GeometryEngine::closest_hit_packet) on issue 8's hard cases: rays
-// from one point exactly through the vertices and edges of closed meshes, at scales
+// The engine's packets (GeometryEngine::closest_hit_packet) on the kernels' hard cases:
+// rays from one point exactly through the vertices and edges of closed meshes, at scales
 // 0.01-10 and offsets up to 1e5, grouped so that they travel as packets (one octant, one
 // dominant axis); and the camera blocks of cameras far from the scene and the origin.
 // Every ray's hit equals the single-ray query's bit for bit, and no ray leaves a closed

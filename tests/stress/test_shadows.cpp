@@ -1,4 +1,4 @@
-// Shadow rays from the hit point's error bound (issue 8, B4 and B5), through Scene and
+// Shadow rays from the hit point's error bound, through Scene and
 // the reference modules: far cameras cause no acne, close occluders are found, the
 // Lambert image of a lit plane matches its analytic value far from the origin.
 //
@@ -93,7 +93,7 @@ std::pair<Vec3, Vec3> tangents(const Vec3& n) {
 }  // namespace
 
 TEST_SUITE("stress shadows") {
-    TEST_CASE("B4: a camera ray from 1e4 away hits a bare plane that is lit there") {
+    TEST_CASE("a camera ray from 1e4 away hits a bare plane that is lit there") {
         Scene scene = empty_scene();
         scene.planes.push_back({Plane{Vec3(0, 1, 0), 0.0f}, 0});
         scene.commit();
@@ -108,7 +108,7 @@ TEST_SUITE("stress shadows") {
         CHECK(seen == Seen::lit);
     }
 
-    TEST_CASE("B5: an occluder 1e-4 above a point at |p| = 1 (1e-2 at 1e4) is found") {
+    TEST_CASE("an occluder 1e-4 above a point at |p| = 1 (1e-2 at 1e4) is found") {
         for (const float scale : {1.0f, 1e4f}) {
             const float gap = scale == 1.0f ? 1e-4f : 1e-2f;
             const Vec3 x = scale * Vec3(0.6f, 0.0f, 0.8f), up(0, 1, 0);

@@ -1,6 +1,9 @@
-// Ray-sphere numerics: far from the origin, tangent rays, rays starting on the surface.
+// Ray-sphere numerics: far from the origin (also through the scene), tangent rays, rays
+// starting on the surface, radii whose square overflows or underflows.
 #include <doctest/doctest.h>
 
+#include "meshes.h"
+#include "raylab/error.h"
 #include "test_helpers.h"
 
 using namespace raylab;
@@ -104,6 +107,30 @@ TEST_SUITE("stress sphere") {
                 INFO("D = " << D << ", ray " << k << ": " << r);
                 CHECK_FALSE(reference::intersect_sphere(r, s).has_value());
             }
+        }
+    }
+
+    TEST_CASE("a small sphere far away is hit through the scene where the kernel hits") {
+        const Sphere s{Vec3(70000.296875f, 0.0f, 0.0f), 0.3f};
+        const Ray r{Vec3(0x1.117098p+16f, -5.0f, 0.0f),
+                    Vec3(0x1.47ae14p-12f, 0x1.fffffep-1f, 0.0f), 0.0f, kInfinity};
+        REQUIRE(reference::intersect_sphere(r, s));
+        Scene scene = one_material_scene();
+        scene.spheres.push_back(SceneSphere{s, 0});
+        scene.commit();
+        CHECK(scene_hits(scene, r));
+        // The box holds the exact sphere: c + r and c - r rounded outwards
+        const Aabb box = scene.bounds();
+        CHECK(double(box.hi.x) >= double(s.c.x) + double(s.r));
+        CHECK(double(box.lo.x) <= double(s.c.x) - double(s.r));
+    }
+
+    TEST_CASE("spheres whose r^2 overflows or underflows are refused by name") {
+        for (const float radius : {1.9e19f, 1e30f, 1e-40f, 1e-25f}) {
+            Scene scene = one_material_scene();
+            scene.spheres.push_back(SceneSphere{Sphere{Vec3(0.0f), radius}, 0});
+            INFO("radius " << radius);
+            CHECK_THROWS_WITH_AS(scene.commit(), doctest::Contains("sphere 0"), Error);
         }
     }
 }
