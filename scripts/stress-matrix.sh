@@ -61,13 +61,13 @@ for config in "${configs[@]}"; do
     dir="build-stress/${cxx}${flags// /}"
     start=$SECONDS
     echo "== stress suite: $cxx $flags ($dir)"
-    # clang++ -O2 builds and runs the framework's unit tests too: the rest of CI builds
+    # clang++ -O2 builds and runs the framework's and the engine's unit tests too: the rest of CI builds
     # them with g++ only, and clang 14 refuses some C++17 that g++ takes. So does the
     # build without SIMD: the engine's scalar twins (the hit point's shared coordinates)
     # are checked there, not by the stress suite
     targets=(raylab-stress-tests)
     if [[ "$cxx" == clang++ && "$flags" == "-O2" ]] || [[ "$flags" == *RAYLAB_NO_SIMD* ]]; then
-        targets+=(raylab-framework-tests)
+        targets+=(raylab-framework-tests raylab-engine-tests)
     fi
     if ! cmake -S . -B "$dir" -G Ninja -DCMAKE_CXX_COMPILER="$cxx" \
         -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="$flags" "${launcher[@]}" \
@@ -88,6 +88,10 @@ for config in "${configs[@]}"; do
         echo "== $cxx $flags, the framework's unit tests"
         if ! "$dir/tests/framework/raylab-framework-tests" --no-intro --minimal; then
             failed+=("$cxx $flags framework tests")
+        fi
+        echo "== $cxx $flags, the engine's tests"
+        if ! "$dir/engine/tests/raylab-engine-tests" --no-intro --minimal; then
+            failed+=("$cxx $flags engine tests")
         fi
     fi
     # A build for the baseline carries the engine's AVX2 and AVX-512 versions too, and
