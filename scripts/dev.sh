@@ -55,6 +55,7 @@ cd "$RAYLAB_ROOT"
 
 BUILD_DIR=build      # the everyday build (Release, warnings are not errors)
 CI_DIR=build-ci      # the strict build of `test` (warnings as errors), what CI checks
+NOENGINE_DIR=build-noengine # test's strict build without the geometry engine
 ASAN_DIR=build-asan  # the sanitizer build of `test` (same options as the asan preset)
 FUZZ_DIR=build-fuzz  # libFuzzer targets (clang; fuzz/CMakeLists.txt)
 MARKER=.raylab-build # in every folder configure() made: `clean` deletes only those
@@ -322,6 +323,9 @@ cmd_test() {
 
     timed "clang-format check" cmd_format_check
 
+    # The engine is one CMake line away: without it the same images, the same tests
+    timed "without the engine ($NOENGINE_DIR/)" without_engine
+
     # Address and undefined-behaviour sanitizers on the unit tests (no GUI: Mesa leaks); the
     # libraries and the stress suite as unity builds (RAYLAB_UNITY_BUILD), since the strict
     # build compiles every file alone
@@ -385,6 +389,25 @@ stress_narrower() {
 build_ci() {
     configure "$CI_DIR" -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WERROR=ON
     compile "$CI_DIR"
+}
+
+# The build without the geometry engine (RAYLAB_WITH_ENGINE=OFF), the strict build's flags
+# otherwise, so that ccache serves every compile the engine does not change: its unit and
+# stress tests pass, and raylab-render's images equal the strict build's byte for byte
+without_engine() {
+    [[ -d engine ]] || return 0 # a student release: the engine is in the compiled reference
+    configure "$NOENGINE_DIR" -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WERROR=ON \
+        -DRAYLAB_WITH_ENGINE=OFF
+    compile "$NOENGINE_DIR" raylab-render raylab-framework-tests raylab-stress-tests
+    step "Unit and stress tests without the engine ($NOENGINE_DIR/)"
+    "$NOENGINE_DIR/tests/framework/raylab-framework-tests" --no-intro --minimal ||
+        die "the framework's tests failed without the engine (output above)"
+    "$NOENGINE_DIR/tests/stress/raylab-stress-tests" --no-intro --minimal ||
+        die "the stress suite failed without the engine (output above)"
+    step "Images with and without the engine (engine/tests/same_images.sh)"
+    bash engine/tests/same_images.sh "$CI_DIR/framework/raylab-render" \
+        "$NOENGINE_DIR/framework/raylab-render" ||
+        die "the images differ without the engine (output above)"
 }
 
 # The sanitizer build (the asan preset's options)
