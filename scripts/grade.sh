@@ -158,7 +158,7 @@ mkdir -p "$BUILD"
     ninja -C "$BUILD" "${targets[@]}" >"$BUILD/build.log" 2>&1 || { tail -n 40 "$BUILD/build.log"; exit 1; }
     # The stubs' objects, for the modules a worker does not take from the hand-in
     # shellcheck disable=SC1091
-    source "$BUILD/tests/grading/worker-toolchain.sh"
+    source "$BUILD/grading/worker-toolchain.sh"
     mkdir -p "$BUILD/stub-objects"
     for id in "${MODULES[@]}"; do
         o=$BUILD/stub-objects/$id.o
@@ -169,7 +169,7 @@ mkdir -p "$BUILD"
     done
 ) 9>"$BUILD/.grade.lock" || die "building the graders failed (see $BUILD/build.log)"
 # shellcheck disable=SC1091
-source "$BUILD/tests/grading/worker-toolchain.sh"
+source "$BUILD/grading/worker-toolchain.sh"
 CXX=$(readlink -f "$CXX") # /usr/bin/c++ leads through /etc/alternatives, outside the sandbox
 
 declare -A error=() # module -> file with the reason it scores zero
@@ -215,7 +215,7 @@ quoted() {
 # bubblewrap with a user namespace (the hand-in's compiler then runs as nobody inside it);
 # where the kernel refuses one (a chroot, some containers) but we are root, the other
 # namespaces without it and with every capability dropped (as the worker's sandbox does,
-# tests/grading/worker_client.cpp)
+# grading/worker_client.cpp)
 sandbox=none
 namespaces=()
 # RAYLAB_SANDBOX=none (as for the worker, worker_client.cpp) grades without namespaces, as
@@ -284,7 +284,7 @@ contained() {
 if [[ -n $SOURCE ]]; then
     step "Staging the exercise files of the $label"
     # raylab-sandbox stage opens nothing through a link and takes regular files only (see
-    # tests/grading/sandbox_main.cpp); in bubblewrap it sees the hand-in and the stage only
+    # grading/sandbox_main.cpp); in bubblewrap it sees the hand-in and the stage only
     if [[ $sandbox == bwrap ]]; then
         stage=(bwrap "${namespaces[@]}" --die-with-parent --new-session --ro-bind /usr /usr
             --symlink usr/lib /lib --symlink usr/lib64 /lib64 --ro-bind "$SANDBOX" /stage-tool
@@ -468,7 +468,7 @@ link_cached() {
 
 if ((reference)); then
     for id in "${MODULES[@]}"; do
-        cp "$BUILD/tests/grading/raylab-worker-reference" "$SCRATCH/workers/$id"
+        cp "$BUILD/grading/raylab-worker-reference" "$SCRATCH/workers/$id"
     done
 else
     step "Compiling each exercise file on its own and linking its worker"
@@ -579,7 +579,7 @@ for n in "${notes[@]}"; do args+=(--note "${n%%$'\t'*}=${n#*$'\t'}"); done
 
 step "Grading, one process per module (time limit ${timeout} s each)"
 status=0
-"$BUILD/tests/grading/raylab-grade" "${args[@]}" || status=$?
+"$BUILD/grading/raylab-grade" "${args[@]}" || status=$?
 # Without an IPC namespace, SysV objects a worker made as nobody would outlive it (the
 # worker's seccomp filter refuses them; this is the second line)
 if [[ $sandbox == none && $EUID == 0 ]] && have ipcs && have ipcrm; then

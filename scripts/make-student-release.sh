@@ -192,7 +192,7 @@ fi
 [[ ! -e $OUT/solutions ]] || die "the release holds solutions/"
 src=$(find "$OUT/reference" -type f ! -name libraylab_reference.a)
 [[ -z $src ]] || die "reference/ holds more than the library: $src"
-leaks=$(grep -rl 'raylab::reference::[a-z_]*(' "$OUT/exercises" "$OUT/tests/grading" || true)
+leaks=$(grep -rl 'raylab::reference::[a-z_]*(' "$OUT/exercises" "$OUT/grading" "$OUT/tests/grading" || true)
 [[ -z $leaks ]] || die "these release files call the reference: $leaks"
 
 if [[ -n ${RELEASE_CHECK_DIR:-} ]]; then

@@ -1,6 +1,7 @@
 // Command-line flags (raylab/options.h).
 #include "raylab/options.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -80,8 +81,33 @@ bool parse_on_off(const std::string& flag, const std::string& text) {
 
 }  // namespace
 
+namespace {
+
+// "Modules (names: ..., IDs such as 04_sphere, numbers 1-N, or all):" from the registry,
+// wrapped at 88 columns
+std::string module_names_help() {
+    const auto& infos = module_infos();
+    std::string text = "Modules (names:";
+    for (const ModuleInfo& info : infos)
+        text += std::string(" ") + info.name;
+    text += ", IDs such as " + std::string(infos[std::min(3, kModuleCount - 1)].id) +
+            ", numbers 1-" + std::to_string(kModuleCount) + ", or all):";
+    std::string wrapped, line;
+    std::istringstream words(text);
+    for (std::string word; words >> word;) {
+        if (!line.empty() && line.size() + 1 + word.size() > 88) {
+            wrapped += line + "\n";
+            line.clear();
+        }
+        line += (line.empty() ? "" : " ") + word;
+    }
+    return wrapped + line;
+}
+
+}  // namespace
+
 std::string options_help() {
-    return R"(Scene and view:
+    std::string help = R"(Scene and view:
   --scene NAME          cornell (default), dtu, or a Wavefront FILE.obj (+ .mtl)
   --eye X,Y,Z           eye point (default: the scene's view)
   --lookat X,Y,Z        look-at point
@@ -108,13 +134,14 @@ Sampling (modules 09 and 10; the defaults are one ray per pixel and point lights
   --light-samples N     shadow rays per area light and point, 1..1024 (default 1)
   --light-sampling S    stratified (default) or uniform
   --seed N              seed of the random samples (default 1)
-Modules (names: pixel-loop camera plane sphere triangle point-light lambert shadows
-antialiasing area-light, IDs such as 04_sphere, numbers 1-10, or all):
+@MODULES@
   --student LIST        run the student's exercises/ code for these modules
   --reference LIST      run the reference solutions/ for these modules
                         (default: the student's code where started, else the reference;
                         the lists change that default in the order given)
 )";
+    help.replace(help.find("@MODULES@"), 9, module_names_help());
+    return help;
 }
 
 Options parse_options(int argc, const char* const* argv, bool allow_extra) {
@@ -209,15 +236,22 @@ Options parse_options(int argc, const char* const* argv, bool allow_extra) {
     if (o.help) return o;
     // The lists apply in order on top of the automatic choice, so "--student sphere" runs
     // the student's sphere and leaves the other modules as they were; "--student all
-    // --reference camera" runs everything but the camera from exercises/
-    o.modules = auto_selection();
-    for (const auto& [flag, list, impl] : module_lists) {
-        try {
-            apply_module_list(o.modules, list, impl);
-        } catch (const Error& e) {
-            throw Error(flag + ": " + printable(e.what(), 400));
+    // --reference camera" runs everything but the camera from exercises/. The automatic
+    // choice calls the student's code (detect_stubs): only when a module is left to it
+    const auto apply_lists = [&](ModuleSelection s) {
+        for (const auto& [flag, list, impl] : module_lists) {
+            try {
+                apply_module_list(s, list, impl);
+            } catch (const Error& e) {
+                throw Error(flag + ": " + printable(e.what(), 400));
+            }
         }
-    }
+        return s;
+    };
+    const ModuleSelection from_student = apply_lists(ModuleSelection::all(Impl::student));
+    const bool all_given =
+        from_student.impl == apply_lists(ModuleSelection::all(Impl::reference)).impl;
+    o.modules = all_given ? from_student : apply_lists(auto_selection());
     o.modules_given = !module_lists.empty();
     return o;
 }
@@ -232,76 +266,6 @@ Scene make_scene(const Options& o, const LoadProgress& progress) {
     if (o.ambient) scene.ambient = *o.ambient;
     check_view(scene.view, "camera");
     return scene;
-}
-
-namespace {
-
-// An any-hit query that never finds anything, for probing the shadow module
-class NothingOccludes : public Occluder {
-  public:
-    bool occluded(const Ray&) const override { return false; }
-};
-
-}  // namespace
-
-std::uint32_t detect_stubs() {
-    // Call every student function once with harmless input; stubs mark themselves
-    stub::called.store(0);
-    (void)student::image_plane_point(0, 0, 2, 2);
-    Vec3 pixel(0.0f);
-    student::render_tile(
-        Tile{0, 0, 1, 1}, [](const Vec2&) { return Vec3(0.0f); },
-        ImageView{&pixel, 1, 1});
-    (void)student::camera_frame(Vec3(0.0f, 0.0f, 1.0f), Vec3(0.0f),
-                                Vec3(0.0f, 1.0f, 0.0f));
-    (void)student::camera_constant(1.0f);
-    const PinholeCamera camera{Vec3(0.0f, 0.0f, 1.0f),
-                               {Vec3(1.0f, 0, 0), Vec3(0, 1.0f, 0), Vec3(0, 0, -1.0f)},
-                               1.0f};
-    (void)student::camera_ray(camera, Vec2(0.0f));
-    const Ray down{Vec3(0.0f, 1.0f, 0.0f), Vec3(0.0f, -1.0f, 0.0f), 0.0f, kInfinity};
-    (void)student::intersect_plane(down, Plane{Vec3(0.0f, 1.0f, 0.0f), 0.0f});
-    (void)student::intersect_sphere(down, Sphere{Vec3(0.0f), 0.5f});
-    (void)student::intersect_triangle(down, Vec3(-1, 0, -1), Vec3(0, 0, 1),
-                                      Vec3(1, 0, -1));
-    const PointLight light{Vec3(0.0f, 2.0f, 0.0f), Vec3(1.0f)};
-    const LightSample sample = student::sample_point_light(light, Vec3(0.0f));
-    (void)student::intensity_from_power(Vec3(1.0f));
-    (void)student::lambert(Vec3(0.5f), Vec3(0.0f), Vec3(0.0f, 1.0f, 0.0f),
-                           {LightSample{Vec3(0, 1.0f, 0), 2.0f, Vec3(0.25f)}});
-    (void)student::in_shadow(NothingOccludes{}, Vec3(0.0f), Vec3(0.0f, 1.0f, 0.0f),
-                             LightSample{Vec3(0, 1.0f, 0), 2.0f, sample.Li});
-    (void)student::grid_samples(1);
-    (void)student::stratified_samples(1, PixelRng{});
-    (void)student::pixel_radiance(0, 0, 1, 1, {PixelSample{Vec2(0.5f), 1.0f}},
-                                  [](const Vec2&) { return Vec3(0.0f); });
-    (void)student::needs_more_samples({Vec3(0.0f), Vec3(1.0f)}, 0.5f);
-    (void)student::light_sample_points(1, true, PixelRng{});
-    (void)student::sample_area_light(
-        AreaLight{Vec3(0, 2, 0), Vec3(1, 0, 0), Vec3(0, 0, -1), Vec3(1.0f)}, Vec3(0.0f),
-        Vec2(0.5f), 1);
-    return stub::called.exchange(0);
-}
-
-ModuleSelection auto_selection() {
-    ModuleSelection s = ModuleSelection::all(Impl::student);
-    if (!reference_available()) return s;
-    const std::uint32_t stubs = detect_stubs();
-    for (int k = 0; k < kModuleCount; ++k) {
-        if (stubs & (1u << k)) s.impl[k] = Impl::reference;
-    }
-    return s;
-}
-
-std::string stub_modules_running(const ModuleSelection& selection) {
-    const std::uint32_t stubs = detect_stubs();
-    std::string list;
-    for (const ModuleInfo& info : module_infos()) {
-        const int k = static_cast<int>(info.module);
-        if (selection[info.module] == Impl::student && (stubs & (1u << k)))
-            list += list.empty() ? info.name : std::string(", ") + info.name;
-    }
-    return list;
 }
 
 }  // namespace raylab

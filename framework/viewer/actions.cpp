@@ -148,8 +148,8 @@ void run_tests(Viewer& v) {
     if (v.grading_binary.empty()) {
         report_error(
             v,
-            "the graders are not built: raylab-grading-tests is not in "
-            "tests/grading/ of this build (set RAYLAB_GRADING_TESTS to its path)");
+            "no scripts/grade.sh in the source tree of this build (set "
+            "RAYLAB_GRADING_TESTS to a raylab-grading-tests binary to grade with it)");
         return;
     }
     if (v.grading->running()) return;
@@ -162,6 +162,9 @@ void poll_grading(Viewer& v) {
     if (v.grading_logged || v.grading->running()) return;
     v.grading_logged = true;
     v.log.add("graders of the student's code (exercises/):\n" + grades_text(v));
+    // The driver's own table, as `./scripts/dev.sh grade` prints it
+    if (const std::string table = grades_table(v.grading->grades()); !table.empty())
+        v.log.add(table);
 }
 
 std::string grades_text(const Viewer& v) {

@@ -14,31 +14,13 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
-#include <regex>
+#include <sstream>
+
+#include "grade.h"
 
 extern char** environ;
 
 namespace raylab::viewer {
-
-std::optional<DoctestSummary> parse_doctest_summary(std::string_view output) {
-    // The last such line wins (doctest prints one per run)
-    static const std::regex line(
-        R"(test cases:\s*(\d+)\s*\|\s*(\d+)\s*passed\s*\|\s*(\d+)\s*failed(?:\s*\|\s*(\d+)\s*skipped)?)");
-    std::optional<DoctestSummary> summary;
-    const std::string text(output);
-    for (auto it = std::sregex_iterator(text.begin(), text.end(), line);
-         it != std::sregex_iterator(); ++it) {
-        const std::smatch& m = *it;
-        DoctestSummary s;
-        s.cases = std::stoi(m[1]);
-        s.passed = std::stoi(m[2]);
-        s.failed = std::stoi(m[3]);
-        s.skipped = m[4].matched ? std::stoi(m[4]) : 0;
-        summary = s;
-    }
-    return summary;
-}
 
 namespace {
 
@@ -130,39 +112,6 @@ ChildResult run_child(const std::vector<std::string>& argv,
     return result;
 }
 
-ModuleGrade grade_module(const std::string& binary, const std::string& id,
-                         double timeout_seconds, const std::atomic<bool>* cancel) {
-    ModuleGrade grade;
-    const ChildResult child =
-        run_child({binary, "--test-suite=" + id}, {}, timeout_seconds, cancel);
-    grade.output = child.output;
-    const std::optional<DoctestSummary> summary = parse_doctest_summary(child.output);
-    if (summary) grade.counts = *summary;
-    if (!child.started || child.exit_code == 127) {
-        grade.status = ModuleGrade::Status::error;
-        grade.summary = "could not start the graders";
-    } else if (child.timed_out) {
-        grade.status = ModuleGrade::Status::crashed;
-        grade.summary = "timed out after " + std::to_string(int(timeout_seconds)) + " s";
-    } else if (child.signal != 0) {
-        grade.status = ModuleGrade::Status::crashed;
-        grade.summary = std::string("crashed (") + strsignal(child.signal) + ")";
-    } else if (!summary) {
-        grade.status = ModuleGrade::Status::error;
-        grade.summary =
-            "no doctest summary (exit code " + std::to_string(child.exit_code) + ")";
-    } else if (summary->cases == 0) {  // "skipped" counts the other suites' cases
-        grade.status = ModuleGrade::Status::no_tests;
-        grade.summary = "no tests";
-    } else {
-        const bool all = summary->failed == 0 && child.exit_code == 0;
-        grade.status = all ? ModuleGrade::Status::passed : ModuleGrade::Status::failed;
-        grade.summary = std::to_string(summary->passed) + "/" +
-                        std::to_string(summary->cases) + " passed";
-    }
-    return grade;
-}
-
 namespace {
 
 // A fresh temporary folder, or "" when none can be made
@@ -171,48 +120,39 @@ std::string make_temp_dir() {
     return mkdtemp(dir.data()) ? dir : std::string();
 }
 
-// The runner's cases.json in dir (an array of modules), or null
-nlohmann::json read_cases(const std::string& dir) {
-    try {
-        std::ifstream in(dir + "/cases.json");
-        nlohmann::json modules = nlohmann::json::parse(in);
-        if (modules.is_array()) return modules;
-    } catch (const std::exception&) {
-    }
-    return nullptr;
+// The driver's cases.json in dir, read by the grading library (empty when missing)
+std::vector<grade::ModuleResult> read_cases(const std::string& dir) {
+    std::ifstream in(dir + "/cases.json");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return grade::read_cases_json(text.str());
 }
 
-// One module of the runner's cases.json, in the words the runner used
-ModuleGrade grade_from_cases(const nlohmann::json& m) {
+// One module of the driver's cases.json, in the words the driver used
+ModuleGrade grade_from_cases(const grade::ModuleResult& m) {
     ModuleGrade grade;
-    for (const nlohmann::json& c : m.value("cases", nlohmann::json::array()))
-        grade.cases.push_back(
-            {c.value("name", ""), c.value("status", ""), c.value("message", "")});
-    const std::string status = m.value("status", "error");
-    grade.counts.cases = int(grade.cases.size());
-    grade.counts.passed = m.value("passed", 0);
-    grade.counts.failed = grade.counts.cases - grade.counts.passed;
-    const std::string counts = std::to_string(grade.counts.passed) + "/" +
-                               std::to_string(grade.counts.cases) + " passed";
-    if (status == "passed") {
+    for (const grade::CaseResult& c : m.cases)
+        grade.cases.push_back({c.name, c.status, c.message});
+    const std::string counts =
+        std::to_string(m.passed) + "/" + std::to_string(m.cases.size()) + " passed";
+    if (m.status == "passed") {
         grade.status = ModuleGrade::Status::passed;
         grade.summary = counts;
-    } else if (status == "failed") {
+    } else if (m.status == "failed") {
         grade.status = ModuleGrade::Status::failed;
         grade.summary = counts;
-    } else if (status == "not started") {
+    } else if (m.status == "not started") {
         grade.status = ModuleGrade::Status::not_started;
         grade.summary = "not started";
-    } else if (status == "time limit" || status.rfind("crashed", 0) == 0) {
+    } else if (m.status == "time limit" || m.status.rfind("crashed", 0) == 0) {
         grade.status = ModuleGrade::Status::crashed;
-        grade.summary = status;
+        grade.summary = m.status;
     } else {
         grade.status = ModuleGrade::Status::error;
-        grade.summary = status;
+        grade.summary = m.status;
     }
-    const std::string first = m.value("first_failure", "");
-    const std::string build = m.value("build_error", "");
-    grade.output = build.empty() ? first : build;
+    grade.output = m.build_error.empty() ? m.first_failure : m.build_error;
+    grade.result = m;
     return grade;
 }
 
@@ -267,9 +207,9 @@ ModuleGrade grade_with_runner(const std::string& runner, const std::string& test
         run_child({runner, "--tests", tests, "--out", dir, "--only", id, "--timeout",
                    std::to_string(int(timeout_seconds / 2))},
                   {}, timeout_seconds, cancel);
-    const nlohmann::json modules = read_cases(dir);
+    const std::vector<grade::ModuleResult> modules = read_cases(dir);
     std::filesystem::remove_all(dir);
-    if (!child.started || child.timed_out || modules.is_null() || modules.empty()) {
+    if (!child.started || child.timed_out || modules.empty()) {
         grade.output = child.output;
         grade.status =
             child.timed_out ? ModuleGrade::Status::crashed : ModuleGrade::Status::error;
@@ -309,9 +249,9 @@ std::array<ModuleGrade, kModuleCount> grade_with_script(const std::string& scrip
     const ChildResult child =
         run_child({"/bin/bash", script}, {"GRADE_OUT=" + dir, "SUBMISSION=" + submission},
                   timeout_seconds, cancel);
-    const nlohmann::json modules = read_cases(dir);
+    const std::vector<grade::ModuleResult> modules = read_cases(dir);
     std::filesystem::remove_all(dir);
-    if (!child.started || child.timed_out || child.exit_code != 0 || modules.is_null()) {
+    if (!child.started || child.timed_out || child.exit_code != 0 || modules.empty()) {
         const std::string why =
             child.timed_out
                 ? "timed out after " + std::to_string(int(timeout_seconds)) + " s"
@@ -320,22 +260,21 @@ std::array<ModuleGrade, kModuleCount> grade_with_script(const std::string& scrip
             "grading failed: " + why + " (./scripts/dev.sh grade shows the whole output)",
             child.output);
     }
-    for (const nlohmann::json& m : modules) {
-        const std::string id = m.value("id", "");
-        for (const ModuleInfo& info : module_infos()) {
-            if (id == info.id)
-                grades[static_cast<int>(info.module)] = grade_from_cases(m);
-        }
-    }
+    for (const grade::ModuleResult& m : modules)
+        grades[static_cast<int>(m.info->module)] = grade_from_cases(m);
     return grades;
 }
 
-std::string find_runner(const std::string& grading_binary) {
-    const size_t slash = grading_binary.rfind('/');
-    const std::string path =
-        (slash == std::string::npos ? std::string(".")
-                                    : grading_binary.substr(0, slash)) +
-        "/raylab-grade";
+std::string grades_table(const std::array<ModuleGrade, kModuleCount>& grades) {
+    std::vector<grade::ModuleResult> graded;
+    for (const ModuleGrade& g : grades)
+        if (g.result.info) graded.push_back(g.result);
+    return graded.empty() ? std::string()
+                          : grade::table(graded, "exercises/ (Run tests)");
+}
+
+std::string find_runner() {
+    const std::string path = RAYLAB_GRADE_RUNNER;
     return access(path.c_str(), X_OK) == 0 ? path : std::string();
 }
 
@@ -356,11 +295,7 @@ std::string find_grading_binary(const std::string& viewer_path) {
     if (const char* env = std::getenv("RAYLAB_GRADING_TESTS"); env && *env) {
         return access(env, X_OK) == 0 ? std::string(env) : std::string();
     }
-    if (std::string script = find_grade_script(viewer_path); !script.empty())
-        return script;
-    const std::string path =
-        build_dir_of(viewer_path) + "/tests/grading/raylab-grading-tests";
-    return access(path.c_str(), X_OK) == 0 ? path : std::string();
+    return find_grade_script(viewer_path);
 }
 
 GradingRun::~GradingRun() {
@@ -414,11 +349,19 @@ void GradingRun::start(const std::string& binary, double timeout_seconds,
                 grades_[static_cast<int>(info.module)].summary = "running";
             }
             wake_();
-            const std::string runner = find_runner(binary);
-            ModuleGrade grade =
-                runner.empty() ? grade_module(binary, info.id, timeout_seconds, &cancel_)
-                               : grade_with_runner(runner, binary, info.id,
-                                                   timeout_seconds, &cancel_);
+            const std::string runner = find_runner();
+            ModuleGrade grade;
+            if (runner.empty()) {
+                grade.status = ModuleGrade::Status::error;
+                grade.summary = "raylab-grade is not built";
+                grade.output = std::string(
+                                   "build it: cmake --build <build> --target "
+                                   "raylab-grade (expected at ") +
+                               RAYLAB_GRADE_RUNNER + ")";
+            } else {
+                grade =
+                    grade_with_runner(runner, binary, info.id, timeout_seconds, &cancel_);
+            }
             {
                 std::lock_guard<std::mutex> lock(mutex_);
                 grades_[static_cast<int>(info.module)] = std::move(grade);

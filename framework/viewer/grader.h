@@ -3,37 +3,25 @@
 // The panel's "Run tests" runs scripts/grade.sh of the source tree the viewer was built
 // from, on the exercises it was built with: the same command as `./scripts/dev.sh grade`,
 // so the same staging, sandbox, table and words, and it builds the graders when they are
-// not built yet. It reads the runner's cases.json. With $RAYLAB_GRADING_TESTS, or without
-// the source tree, it runs the build's own runner, raylab-grade --only NN_name (next to
-// raylab-grading-tests), or else raylab-grading-tests --test-suite=NN_name and doctest's
-// summary line. Child processes keep a crashing or hanging module from taking the viewer
-// down.
+// not built yet. With $RAYLAB_GRADING_TESTS (a graders binary) it runs this build's
+// raylab-grade (grading/) on it, one module at a time. Either way it reads the driver's
+// cases.json with the grading library. Child processes keep a crashing or hanging module
+// from taking the viewer down.
 #pragma once
 
 #include <array>
 #include <atomic>
 #include <functional>
 #include <mutex>
-#include <optional>
 #include <string>
 #include <string_view>
 #include <thread>
 #include <vector>
 
+#include "grade.h"
 #include "raylab/modules.h"
 
 namespace raylab::viewer {
-
-/// doctest's closing line: "[doctest] test cases: N | P passed | F failed | S skipped".
-struct DoctestSummary {
-    int cases = 0;  ///< test cases run (those that passed the --test-suite filter)
-    int passed = 0;
-    int failed = 0;
-    int skipped = 0;  ///< test cases filtered out (the other suites)
-};
-
-/// The test-case summary in doctest's console output, if there is one.
-std::optional<DoctestSummary> parse_doctest_summary(std::string_view output);
 
 /// How a child process ended.
 struct ChildResult {
@@ -71,16 +59,15 @@ struct ModuleGrade {
         not_started
     };
     Status status = Status::not_run;
-    DoctestSummary counts;
     std::string summary;           ///< one line for the panel, e.g. "12/14 passed"
     std::string output;            ///< the grader's console output
     std::vector<CaseGrade> cases;  ///< per case, when the runner graded it
+    grade::ModuleResult result;    ///< the driver's result (result.info null: none)
 };
 
-/// Grades module id with the grading binary, in a child process.
-ModuleGrade grade_module(const std::string& binary, const std::string& id,
-                         double timeout_seconds,
-                         const std::atomic<bool>* cancel = nullptr);
+/// The grade driver's score table (grade::table, as `./scripts/dev.sh grade` prints it)
+/// of the modules in grades that the driver graded, or "" when none was.
+std::string grades_table(const std::array<ModuleGrade, kModuleCount>& grades);
 
 /// Grades module id with the runner (raylab-grade) and the grading binary tests, in a
 /// child process; the runner's words and per-case results.
@@ -95,8 +82,9 @@ std::array<ModuleGrade, kModuleCount> grade_with_script(
     const std::string& script, const std::string& exercises, double timeout_seconds,
     const std::atomic<bool>* cancel = nullptr);
 
-/// The runner raylab-grade beside the grading binary, or "" when missing.
-std::string find_runner(const std::string& grading_binary);
+/// This build's grade driver (grading/raylab-grade, built with the viewer), or "" when
+/// it is missing.
+std::string find_runner();
 
 /// scripts/grade.sh of the source tree of the build holding the viewer at viewer_path
 /// (<build>/framework/viewer/raylab; the tree is CMakeCache.txt's CMAKE_HOME_DIRECTORY),
@@ -107,9 +95,8 @@ std::string find_grade_script(const std::string& viewer_path);
 /// build), or "".
 std::string find_exercises_dir(const std::string& viewer_path);
 
-/// What "Run tests" runs: $RAYLAB_GRADING_TESTS when set (a grading binary), else the
-/// source tree's scripts/grade.sh (find_grade_script), else the build's own
-/// tests/grading/raylab-grading-tests. Empty when none is there.
+/// What "Run tests" runs: $RAYLAB_GRADING_TESTS when set (a graders binary), else the
+/// source tree's scripts/grade.sh (find_grade_script). Empty when neither is there.
 std::string find_grading_binary(const std::string& viewer_path);
 
 /// Grades every module in a background thread; the panel reads snapshots.
@@ -120,9 +107,10 @@ class GradingRun {
     GradingRun(const GradingRun&) = delete;
     GradingRun& operator=(const GradingRun&) = delete;
 
-    /// Starts grading all modules with binary (unless a run is under way): a grading
-    /// binary, timeout_seconds per module; or scripts/grade.sh on the folder exercises
-    /// (default: the exercises/ beside the script), kScriptTimeout in all.
+    /// Starts grading all modules with binary (unless a run is under way): a graders
+    /// binary, through raylab-grade, timeout_seconds per module; or scripts/grade.sh on
+    /// the folder exercises (default: the exercises/ beside the script), kScriptTimeout
+    /// in all.
     void start(const std::string& binary, double timeout_seconds = 120.0,
                const std::string& exercises = "");
     /// The time limit of a whole scripts/grade.sh run (its first run builds the graders)

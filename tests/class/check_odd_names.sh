@@ -8,7 +8,7 @@
 set -euo pipefail
 root=$1 work=$2
 if [[ ${RAYLAB_SANDBOX:-} == none ]] &&
-    ! "${GRADE_BUILD_DIR:-$root/build-grade}/tests/grading/raylab-sandbox" check; then
+    ! "${GRADE_BUILD_DIR:-$root/build-grade}/grading/raylab-sandbox" check; then
     echo "skipped: RAYLAB_SANDBOX=none needs Landlock, which this kernel lacks"; exit 77
 fi
 rm -rf "$work" && mkdir -p "$work/class/s1,comma \"quoted\"" "$work/class/s2|pipe" \

@@ -16,7 +16,7 @@ rm -rf "$work" && mkdir -p "$work/private" "$work/handin"
 echo 424242 >"$work/private/seed"
 fail=0
 if [[ ${RAYLAB_SANDBOX:-} == none ]] &&
-    ! "${GRADE_BUILD_DIR:-$root/build-grade}/tests/grading/raylab-sandbox" check; then
+    ! "${GRADE_BUILD_DIR:-$root/build-grade}/grading/raylab-sandbox" check; then
     echo "skipped: RAYLAB_SANDBOX=none needs Landlock, which this kernel lacks"; exit 77
 fi
 

@@ -51,7 +51,9 @@ std::string options_help();
 /// Throws raylab::Error.
 Scene make_scene(const Options& options, const LoadProgress& progress = {});
 
-/// Modules whose student code is still a stub: bit k for module k + 1.
+/// Modules whose student code is still a stub: bit k for module k + 1. Calls each
+/// contract function of the student's code once, through the registry's probes
+/// (framework/src/stub_probes.cpp).
 std::uint32_t detect_stubs();
 
 /// The default selection: the student's code for every module the student has started,

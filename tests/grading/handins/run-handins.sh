@@ -47,7 +47,7 @@ fi
 
 # Without namespaces grade.sh needs Landlock to grade a hand-in: where the kernel has
 # none, this mode cannot run here (ctest: skipped)
-if [[ ${RAYLAB_SANDBOX:-} == none ]] && ! "$BUILD/tests/grading/raylab-sandbox" check; then
+if [[ ${RAYLAB_SANDBOX:-} == none ]] && ! "$BUILD/grading/raylab-sandbox" check; then
     echo "skipped: RAYLAB_SANDBOX=none needs Landlock, which this kernel lacks"; exit 77
 fi
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/raylab-handins.XXXXXX")

@@ -14,7 +14,7 @@ const int written = [] {
     append("@ROOT@/scripts/grade.sh", line);
     append("../../scripts/grade.sh", line);
     append("../../../scripts/grade.sh", line);
-    append("@ROOT@/tests/grading/grade_main.cpp", "#error forged\n");
+    append("@ROOT@/grading/grade_main.cpp", "#error forged\n");
     append("@ROOT@/exercises/01_pixel_loop.cpp", "// forged\n");
     append("@OUT@/summary.txt", "total 80.00 / 80.00\n");
     append("@OUT@/junit.xml", "<forged/>\n");

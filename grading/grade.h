@@ -91,6 +91,10 @@ std::string module_output(const ModuleResult& m, size_t max_cases = 12);
 std::string junit(const std::vector<ModuleResult>& modules);
 /// Every case of every module with its status and message, for the viewer's "Run tests".
 std::string cases_json(const std::vector<ModuleResult>& modules);
+/// The modules of a cases_json text, as the viewer reads them: id, status, counts, score,
+/// reason, first failure, build error and cases. A module the registry does not know is
+/// left out; text that is not such a list gives none.
+std::vector<ModuleResult> read_cases_json(const std::string& text);
 /// Gradescope's results.json: score, output, one test per module (extra_data: its reason
 /// and notes), and the notes on the whole hand-in (extra_data.notes).
 std::string results_json(const std::vector<ModuleResult>& modules,
