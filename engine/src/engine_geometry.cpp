@@ -127,6 +127,21 @@ RAYLAB_INLINE bool any_hit_query(const Scene& scene, const Ray& r,
     return any_hit_from<Avx>(scene, Primitives(scene), r, counters, hint);
 }
 
+// The module path's walk (GeometryEngine::module_walk): the visit is the scene's, which
+// calls the table's functions, so only the walk is the engine's
+template <bool Avx>
+RAYLAB_INLINE void module_walk_query(const Bvh& bvh, const Ray& r, bool sorted,
+                                     GeometryEngine::LeafVisit call, void* context,
+                                     std::uint64_t& nodes_visited) {
+    const auto visit = [&](std::uint32_t first, std::uint32_t count, float& tmax) {
+        return call(context, first, count, tmax);
+    };
+    if (sorted)
+        walk<true, Avx>(bvh, r, visit, nodes_visited);
+    else
+        walk<false, Avx>(bvh, r, visit, nodes_visited);
+}
+
 // The queries compiled for the baseline and, on x86-64, for AVX2 and AVX-512
 // (engine_simd.h)
 RAYLAB_ENGINE_VERSIONS(closest_hit_query, void, closest_hit_versions,
@@ -137,6 +152,11 @@ RAYLAB_ENGINE_VERSIONS(any_hit_query, bool, any_hit_versions,
                        (const Scene& scene, const Ray& r, TraceCounters& counters,
                         AnyHitHint* hint),
                        (scene, r, counters, hint))
+RAYLAB_ENGINE_VERSIONS(module_walk_query, void, module_walk_versions,
+                       (const Bvh& bvh, const Ray& r, bool sorted,
+                        GeometryEngine::LeafVisit call, void* context,
+                        std::uint64_t& nodes_visited),
+                       (bvh, r, sorted, call, context, nodes_visited))
 
 }  // namespace
 
@@ -157,7 +177,8 @@ const GeometryEngine* geometry_engine() {
                                        engine_kernels::closest_hit_versions_chosen(),
                                        engine_kernels::any_hit_versions_chosen(),
                                        engine_kernels::chosen_packet_query(),
-                                       engine_kernels::engine_versions()};
+                                       engine_kernels::engine_versions(),
+                                       engine_kernels::module_walk_versions_chosen()};
     return &engine;
 }
 

@@ -98,6 +98,25 @@ Vec3 interpolated_normal(const VertexNormals& tri, const Hit& hit) {
     return glm::dot(ns, hit.n) < 0.0f ? -ns : ns;
 }
 
+// The module path's walk of bvh (Bvh::traverse when Sorted, else traverse_any): the
+// engine's, the same leaves in the same order with vector node tests, when the table
+// has an engine; the plain one without
+template <bool Sorted, class Visit>
+void module_walk(const Bvh& bvh, const GeometryEngine* engine, const Ray& r, Visit& visit,
+                 std::uint64_t& nodes_visited) {
+    if (engine && engine->module_walk) {
+        const GeometryEngine::LeafVisit call = [](void* context, std::uint32_t first,
+                                                  std::uint32_t count, float& tmax) {
+            return (*static_cast<Visit*>(context))(first, count, tmax);
+        };
+        engine->module_walk(bvh, r, Sorted, call, &visit, nodes_visited);
+    } else if (Sorted) {
+        bvh.traverse(r, visit, nodes_visited);
+    } else {
+        bvh.traverse_any(r, visit, nodes_visited);
+    }
+}
+
 }  // namespace
 
 void validate(const View& view) {
@@ -355,32 +374,30 @@ std::optional<Hit> Scene::closest_hit(const ModuleTable& modules, const Ray& r,
     }
     const std::uint32_t sphere_count = static_cast<std::uint32_t>(spheres.size());
     const std::uint32_t* prims = bvh_.prims().data();
-    bvh_.traverse(
-        ray,
-        [&](std::uint32_t first, std::uint32_t count, float& tmax) {
-            for (std::uint32_t k = first; k < first + count; ++k) {
-                ++counters.intersection_tests;
-                ray.tmax = tmax;
-                const std::uint32_t p = prims[k];
-                std::optional<Hit> hit;
-                PrimRef prim;
-                if (p < sphere_count) {
-                    hit = modules.intersect_sphere(ray, spheres[p].sphere);
-                    prim = {PrimRef::Kind::sphere, p};
-                } else {
-                    const SceneTriangle& t = triangles[p - sphere_count];
-                    hit = modules.intersect_triangle(ray, t.v0, t.v1, t.v2);
-                    prim = {PrimRef::Kind::triangle, p - sphere_count};
-                }
-                if (hit) {
-                    tmax = hit->t;
-                    best = hit;
-                    best_prim = prim;
-                }
+    auto visit = [&](std::uint32_t first, std::uint32_t count, float& tmax) {
+        for (std::uint32_t k = first; k < first + count; ++k) {
+            ++counters.intersection_tests;
+            ray.tmax = tmax;
+            const std::uint32_t p = prims[k];
+            std::optional<Hit> hit;
+            PrimRef prim;
+            if (p < sphere_count) {
+                hit = modules.intersect_sphere(ray, spheres[p].sphere);
+                prim = {PrimRef::Kind::sphere, p};
+            } else {
+                const SceneTriangle& t = triangles[p - sphere_count];
+                hit = modules.intersect_triangle(ray, t.v0, t.v1, t.v2);
+                prim = {PrimRef::Kind::triangle, p - sphere_count};
             }
-            return false;
-        },
-        counters.bvh_nodes);
+            if (hit) {
+                tmax = hit->t;
+                best = hit;
+                best_prim = prim;
+            }
+        }
+        return false;
+    };
+    module_walk<true>(bvh_, modules.engine, ray, visit, counters.bvh_nodes);
     if (best) complete(*best, r, best_prim);
     return best;
 }
@@ -407,18 +424,16 @@ bool Scene::any_hit(const ModuleTable& modules, const Ray& r, TraceCounters& cou
         if (modules.intersect_plane(r, p.plane)) return true;
     }
     std::uint32_t stopped = AnyHitHint::kNone;  // the slot that blocks r, once found
-    bvh_.traverse_any(
-        r,
-        [&](std::uint32_t first, std::uint32_t count, float&) {
-            for (std::uint32_t k = first; k < first + count; ++k) {
-                if (blocks(k)) {
-                    stopped = k;
-                    return true;
-                }
+    auto visit = [&](std::uint32_t first, std::uint32_t count, float&) {
+        for (std::uint32_t k = first; k < first + count; ++k) {
+            if (blocks(k)) {
+                stopped = k;
+                return true;
             }
-            return false;
-        },
-        counters.bvh_nodes);
+        }
+        return false;
+    };
+    module_walk<false>(bvh_, modules.engine, r, visit, counters.bvh_nodes);
     if (hint) hint->slot = stopped;
     return stopped != AnyHitHint::kNone;
 }

@@ -10,7 +10,8 @@
 // which ships compiled only, so its copy of the reference's numerics is not readable
 // source in a student release; ModuleTable::make (the glue, linked with the reference)
 // puts it in the table. A build without it (RAYLAB_WITH_ENGINE=OFF) gives the same
-// images from the module path.
+// images from the module path. With a student's module in the table the scene calls the
+// modules, but walks the BVH with the engine's walk (module_walk) when there is one.
 //
 // The engine keeps what it reads besides the scene's own data (flags, normals, copies in
 // the BVH's order) in an EngineData of its own, which Scene::commit() asks the
@@ -25,6 +26,7 @@
 
 namespace raylab {
 
+class Bvh;
 class Scene;
 struct TraceCounters;
 struct AnyHitHint;
@@ -87,6 +89,15 @@ struct GeometryEngine {
     /// "avx512", RAYLAB_NO_AVX2 both), or "native" (a build whose own target decides, as
     /// with -march=native, or -DRAYLAB_NO_SIMD).
     const char* versions;
+    /// The walk of the module path, whose queries call the table's functions (a
+    /// student's): Bvh::traverse (sorted) or Bvh::traverse_any, the same leaves in the
+    /// same order and the same count of nodes, with the engine's vector node tests.
+    /// visit(context, first, count, tmax) is the leaf visit of Bvh::traverse; tmax is
+    /// whatever the visit leaves in it, as in Bvh::traverse (a module may return any t).
+    using LeafVisit = bool (*)(void* context, std::uint32_t first, std::uint32_t count,
+                               float& tmax);
+    void (*module_walk)(const Bvh& bvh, const Ray& r, bool sorted, LeafVisit visit,
+                        void* context, std::uint64_t& nodes_visited);
 };
 
 /// Makes engine the one whose prepare() every later Scene::commit() calls (null: none).
