@@ -6,11 +6,11 @@
 #   is an earlier release (it holds .raylab-release).
 #
 # The release is this tree without what students must not have or cannot build: solutions/
-# (the reference), bench/ but for the student bench's sources (raylab-student-bench, which
-# measures the student's tests beside the compiled reference) and tests/stress/ (they
-# measure the reference), tests/e2e/ (it
-# makes a release), the instructor guide and the benchmark notes (with the sampling
-# benchmark's plots and CSV); a link to one of those in a page the release keeps becomes
+# and engine/ (the reference and its fast path), bench/ but for the student bench's sources
+# (raylab-student-bench, which measures the student's tests beside the compiled reference)
+# and tests/stress/ (they measure the reference), tests/e2e/ (it makes a release), the
+# instructor guide, the benchmark notes (with the sampling benchmark's plots and CSV) and
+# the decision records (the reference's history); a link to one of those in a page the release keeps becomes
 # plain text. In their place it gets:
 #   README.md             the students' README (scripts/release/README.md)
 #   reference/libraylab_reference.a
@@ -87,7 +87,7 @@ excluded() {
             bench/report.* | bench/rng.h) return 1 ;;
         solutions/* | engine/* | bench/* | tests/stress/* | tests/e2e/* | docs/instructor-guide.md | \
             docs/benchmarks.md | docs/sampling-benchmarks.md | docs/images/sampling-benchmark* | \
-            docs/data/* | \
+            docs/data/* | docs/decisions/* | \
             tests/data/golden/* | build*/* | scripts/release/* | README.md) return 0 ;;
     esac
     return 1
@@ -116,8 +116,8 @@ cp "$RAYLAB_ROOT"/exercises/*.cpp "$OUT/tests/grading/stubs/"
 cp "$RAYLAB_ROOT/scripts/release/README.md" "$OUT/README.md"
 printf 'raylab student release of %s, made %s\n' "$commit" "$(date -u +%Y-%m-%dT%H:%MZ)" \
     >"$OUT/.raylab-release"
-note "$count files; no solutions/, bench/ (but the student bench), tests/stress/ or" \
-    "instructor guide"
+note "$count files; no solutions/, engine/, bench/ (but the student bench), tests/stress/," \
+    "decision records or instructor guide"
 
 # A page copied to the release may link a page that stays behind (architecture.md links
 # benchmarks.md): such a link becomes its plain text, so that both trees' links resolve.
