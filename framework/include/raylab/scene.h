@@ -206,7 +206,7 @@ class Scene {
     // Names handed out to the triangles in source_: those after it follow on from this
     std::uint32_t next_source_ = 0;
     static constexpr std::uint64_t kLastSource = 0xffffffffu;  // the largest name kept
-    friend struct SceneTestAccess;  // tests/framework: the count of names near its end
+    friend struct SceneTestAccess;  // engine/tests: the count of names near its end
     // The engine that prepared engine_data_ at the last successful commit(), and its data
     const GeometryEngine* data_engine_ = nullptr;
     std::shared_ptr<const EngineData> engine_data_;
