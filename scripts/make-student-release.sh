@@ -6,7 +6,8 @@
 #   is an earlier release (it holds .raylab-release).
 #
 # The release is this tree without what students must not have or cannot build: solutions/
-# (the reference), bench/ but for the student bench's sources (raylab-student-bench, which
+# (the reference), engine/ (the reference's geometry engine, which repeats its numerics; it
+# ships inside the compiled reference), bench/ but for the student bench's sources (raylab-student-bench, which
 # measures the student's tests beside the compiled reference) and tests/stress/ (they
 # measure the reference), tests/e2e/ (it
 # makes a release), the instructor guide and the benchmark notes (with the sampling
