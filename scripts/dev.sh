@@ -7,7 +7,9 @@
 #                      (or a viewer) render build/cornell.png with raylab-render instead.
 #                      FLAGS go to the viewer or to raylab-render (e.g. --reference all)
 #   test               everything CI checks, in build folders of its own: warnings as errors
-#                      (build-ci/), clang-format, an address and undefined-behaviour sanitizer
+#                      (build-ci/), clang-format, the build without the geometry engine
+#                      (build-noengine/: its unit and stress tests, its images equal to
+#                      build-ci/'s), an address and undefined-behaviour sanitizer
 #                      build (build-asan/) running the unit tests, a few seconds of each fuzz
 #                      target (build-fuzz/, when clang is installed), the users' paths end to
 #                      end (tests/e2e/user_paths.sh: a student release and its checks, the

@@ -15,7 +15,7 @@
 # RAYLAB_NO_SIMD builds the scalar twins of the SSE2 code (raylab/simd.h), which must give
 # the same results. The builds for the baseline (-O0, -O2) also run the suite twice more,
 # with RAYLAB_NO_AVX512=1 and with RAYLAB_NO_AVX2=1, on the reference engine's AVX2 and
-# baseline versions (solutions/engine_simd.h), which a processor with AVX-512 would not
+# baseline versions (engine/src/engine_simd.h), which a processor with AVX-512 would not
 # choose.
 # Each is a unity build (RAYLAB_UNITY_BUILD: the framework's libraries and the stress suite
 # in a few large files; the reference's modules and the framework's tests one file each),

@@ -6,7 +6,7 @@
 // computes only t, with exactly the operations of its module (solutions/03_plane.cpp,
 // 04_sphere.cpp, 05_triangle.cpp; -ffp-contract=off keeps them unfused), so it accepts
 // exactly the primitives the module accepts, and builds the nearest one's Hit with the
-// module's expressions. tests/framework/test_engine.cpp renders scenes both ways and
+// module's expressions. engine/tests/test_engine.cpp renders scenes both ways and
 // compares, and tests/stress runs on both paths. The tests are repeated in
 // engine_kernels.h, which the engine's files share, not shared with the modules: each
 // module file of solutions/ must stay self-contained, since the class tests grade copies
@@ -50,10 +50,10 @@ RAYLAB_INLINE void closest_hit_from(const Scene& scene, const Source& source,
     bool in_bvh = false;
     // A triangle's test writes its extra only when it accepts, so straight into
     // best_extra: a copy from a local just written stalled the load on the two stores it
-    // spans (store-to-load forwarding fails; 1 % of a Cornell box camera ray)
+    // spans (store-to-load forwarding fails; docs/decisions/0001)
     TriangleExtra best_extra;
-    // The leaf visit inlined into the walk (GCC left it a call: its prologue and
-    // epilogue per leaf were 2 % of a Cornell box camera ray)
+    // The leaf visit inlined into the walk (GCC left it a call, with a prologue and an
+    // epilogue per leaf; docs/decisions/0001)
     const auto visit = [&](std::uint32_t first, std::uint32_t count, float& tmax)
         __attribute__((always_inline)) {
         counters.intersection_tests += count;

@@ -90,7 +90,7 @@ struct WoopRay {
     // rays may come from anywhere: the branches mispredicted 0.9 times a random ray in
     // the Cornell box. 1 / w_kz is |w|'s largest component's reciprocal, with w_kz's
     // sign (division is symmetric in sign, so the same double), and the division starts
-    // without waiting for the axis: with it waiting, camera rays took 1-5 % longer
+    // without waiting for the axis, which camera rays waited on (docs/decisions/0003)
     struct Unpredictable {};
     WoopRay(const Ray& r, Unpredictable) {
         const float ax = std::abs(r.w.x), ay = std::abs(r.w.y), az = std::abs(r.w.z);
@@ -217,7 +217,7 @@ struct Primitives {
         }
         const std::uint32_t k = p - sphere_count;
         // The flag is read for every test, not only for one that passes: its load then
-        // overlaps the test (read last, Cornell box random rays were 2 % slower)
+        // overlaps the test instead of following it (docs/decisions/0004)
         const SceneTriangle& tri = triangles[k];
         return triangle_t(r, q, tri.v0, tri.v1, tri.v2, data.degenerate(k), tmax, extra);
     }
@@ -227,8 +227,7 @@ struct Primitives {
 
 // The same tests in a scene without spheres, whose triangles commit() has put in the
 // BVH's slot order (Scene::triangles): slot s holds triangle s, read with no load of the
-// order before it. A random ray through raylab-bench's random soup (100,000 triangles)
-// took 2-4 % less time than through the order (four alternations in one process)
+// order before it, which random rays through large meshes wait on (docs/decisions/0004)
 struct SlotOrderTriangles {
     const SceneTriangle* triangles;
     const Scene& scene;

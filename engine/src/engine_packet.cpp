@@ -2,7 +2,7 @@
 // from one origin, as a 4 x 4 block of a tile's camera rays, walk the BVH together (one
 // frustum slab test per node, traverse_frustum) and test each triangle four rays at
 // a time, with exactly the single-ray query's operations on exactly its values, so each
-// ray gets closest_hit's result bit for bit (tests/framework/test_packets.cpp).
+// ray gets closest_hit's result bit for bit (engine/tests/test_packets.cpp).
 //
 // Why it is faster: the walk's node tests, stack and branches are paid once per packet;
 // with one origin, a triangle's vertices minus the origin (the watertight test's

@@ -2,7 +2,7 @@
 // (four rays against one triangle at a time, engine_packet.cpp). Not a module. (The same
 // test on one ray against a leaf's four triangles was measured for the single-ray query
 // and not kept: gathering the leaf's vertices into lanes cost more than the branches it
-// saved, 61 against 57 ns per Cornell box camera ray.)
+// saved: docs/decisions/0009.)
 //
 // Each lane runs exactly triangle_t's IEEE operations (engine_kernels.h) on its own
 // values, in vectors of four doubles (GCC and clang vector extensions: two SSE2 registers
@@ -58,12 +58,12 @@
 // 32 vector registers instead of 16. The query inlined whole needs more than 16 (the
 // walk's ray, the watertight test's shear and its nine coordinates): GCC's AVX2
 // closest-hit query moves vector registers to and from the stack in 363 instructions, its
-// AVX-512 one in 234, and Cornell box camera and random rays took 4-5 % less time (eleven
-// alternations of the two versions, 51.6 against 49.2 and 89.7 against 86.2 ns). A build
-// for a target with AVX2 (-march=native here) has one version, with Avx = true, and the
-// registers its target has. The environment variable RAYLAB_NO_AVX2 (any value) makes the
-// choice the baseline and RAYLAB_NO_AVX512 at most AVX2, so that tests can run every
-// version on one machine (scripts/stress-matrix.sh and tests/framework's ctest runs do).
+// AVX-512 one in 234, which makes camera and random rays faster (docs/decisions/0007). A
+// build for a target with AVX2 (-march=native here) has one version, with Avx = true, and
+// the registers its target has. The environment variable RAYLAB_NO_AVX2 (any value) makes
+// the choice the baseline and RAYLAB_NO_AVX512 at most AVX2, so that tests can run every
+// version on one machine (scripts/stress-matrix.sh and the engine-*-versions ctest runs
+// of engine/tests and tests/framework do).
 #if RAYLAB_ENGINE_AVX2
 #define RAYLAB_ENGINE_VERSIONS(QUERY, RESULT, NAME, PARAMS, ARGS)                \
     __attribute__((flatten)) RESULT NAME##_baseline PARAMS {                     \

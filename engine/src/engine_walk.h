@@ -8,7 +8,8 @@
 // The node tests compute what Bvh::hit_children computes, operation for operation
 // (maxps and minps return their second operand when either is NaN, as the scalar
 // test's ternaries do), so the walks visit what the module path visits and count the
-// same nodes: tests/framework's engine tests and tests/stress hold them to it.
+// same nodes: engine/tests (test_walk.cpp, test_module_walk.cpp) and tests/stress hold
+// them to it.
 #pragma once
 
 #include <cassert>

@@ -143,10 +143,11 @@ TEST_SUITE("engine") {
         CHECK(cf.intersection_tests == cs.intersection_tests);
     }
 
-    // The engine skips the module's normal test: the scene flags degenerate triangles
-    // at commit() instead (Scene::degenerate). Rays exactly through points of collinear
-    // and repeated-vertex triangles must miss them on both paths (the conservative t > 0
-    // bound refuses most of them anyway) and, past them, hit the wall behind
+    // The engine skips the module's normal test: it flags degenerate triangles when it
+    // prepares a committed scene instead (SceneData::degenerate). Rays exactly through
+    // points of collinear and repeated-vertex triangles must miss them on both paths (the
+    // conservative t > 0 bound refuses most of them anyway) and, past them, hit the wall
+    // behind
     TEST_CASE("degenerate triangles are missed on both paths") {
         Scene scene;
         scene.materials.push_back(Material{});

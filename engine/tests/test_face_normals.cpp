@@ -1,7 +1,8 @@
-// The triangle normals a scene keeps (Scene::face_normal, up to kFaceNormalsUpTo
-// triangles), which the engine reads instead of computing them: the engine against the
-// module path at the limit and one triangle above it, with degenerate, tiny and huge
-// triangles, spheres and a plane mixed in, across re-commits, and on non-finite rays.
+// The triangle normals the engine prepares for a scene (SceneData::face_normal, up to
+// kFaceNormalsUpTo triangles), which the engine reads instead of computing them: the
+// engine against the module path at the limit and one triangle above it, with degenerate,
+// tiny and huge triangles, spheres and a plane mixed in, across re-commits, and on
+// non-finite rays.
 #include <doctest/doctest.h>
 
 #include <cmath>

@@ -346,10 +346,10 @@ TEST_SUITE("slot copy") {
 }
 
 TEST_SUITE("engine versions") {
-    // The engine's versions as solutions/engine_simd.h chooses them: on x86-64 built for
-    // the baseline, AVX-512 (x86-64-v4's subsets) where the processor has it unless
+    // The engine's versions as engine_simd.h chooses them: on x86-64 built for the
+    // baseline, AVX-512 (x86-64-v4's subsets) where the processor has it unless
     // RAYLAB_NO_AVX512 or RAYLAB_NO_AVX2 is set, AVX2 where it has that unless
-    // RAYLAB_NO_AVX2 is set (the ctest runs framework/engine-avx2-versions and
+    // RAYLAB_NO_AVX2 is set (the ctest runs engine/engine-avx2-versions and
     // engine-baseline-versions set them), else the build's own
     TEST_CASE("the engine names the versions it runs") {
         const std::string versions = reference::geometry_engine()->versions;

@@ -19,7 +19,7 @@ size_t pixels_of(const Tile& tile) {
 // rays and hits. An intersection module counts only where the scene has its primitives
 // (a sphere module cannot change the hits of a scene without spheres), and the engine
 // not at all: it gives the module path's hits bit for bit
-// (tests/framework/test_engine.cpp)
+// (engine/tests/test_engine.cpp)
 std::vector<const void*> camera_hit_modules(const ModuleTable& m, const Scene& scene) {
     const auto p = [](auto f) { return reinterpret_cast<const void*>(f); };
     return {p(m.image_plane_point),

@@ -96,8 +96,8 @@ double dot_of_difference(const DVec3& a, const DVec3& b, const DD n[3]) {
 
 // ray_onto_plane for the plane through `near` with normal e1 x e2, when the hit x is far
 // nearer the origin than every vertex: in double, the plane's offset near x is known only
-// to about 2^-52 |near| (review: a triangle 2^35 away seen at |x| = 0.8 put the point 45
-// delta off, below its surface). The normal (the products of the float edges, exact in
+// to about 2^-52 |near| (a triangle 2^35 away seen at |x| = 0.8 put the point 45 delta
+// off, below its surface). The normal (the products of the float edges, exact in
 // double-double) and the two signed distances from the plane are computed in
 // double-double, the rest in double
 Vec3 ray_onto_far_plane(const Vec3& x, const Ray& r, const DVec3& e1, const DVec3& e2,
@@ -155,10 +155,10 @@ Vec3 refine_on_triangle(const Vec3& x, const Ray& r, const Vec3& v0, const Vec3&
     // Differences of floats are exact in double unless their exponents are more than 29
     // apart. A cross product of edges e, f errs by about 2^-53 |e| |f|, of the normal's
     // length |e| |f| sin(angle): taken at the vertex opposite the longest edge, the two
-    // edges whose product is smallest (review: a sliver with one vertex 2^18 away, its
-    // normal from the two long edges off by 1.3e-10, put the point 2e4 delta off). The
-    // plane's offset is taken at the vertex nearest x, where a tilt of the normal moves
-    // the plane least
+    // edges whose product is smallest (a sliver with one vertex 2^18 away, its normal
+    // from the two long edges off by 1.3e-10, put the point 2e4 delta off). The plane's
+    // offset is taken at the vertex nearest x, where a tilt of the normal moves the plane
+    // least
     const Vec3* const v[3] = {&v0, &v1, &v2};
     const DVec3 p[3] = {DVec3(v0), DVec3(v1), DVec3(v2)};
     // edge[j] runs from vertex j + 1 to j + 2, opposite vertex j

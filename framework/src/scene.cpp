@@ -319,7 +319,7 @@ std::optional<Hit> Scene::engine_closest_hit(const GeometryEngine& engine, const
                                              TraceCounters& counters) const {
     // The engine writes straight into the returned optional (named return value): a
     // local Hit copied into it was loaded 16 bytes at a time over the engine's narrower
-    // stores, which the store buffer cannot forward (4 % of a Cornell box camera ray)
+    // stores, which the store buffer cannot forward (docs/decisions/0001)
     std::optional<Hit> hit(std::in_place);
     PrimRef prim;
     engine.closest_hit(*this, r, counters, *hit, prim);

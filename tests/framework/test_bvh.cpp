@@ -157,8 +157,8 @@ TEST_SUITE("bvh") {
     }
 
     TEST_CASE("a box the slab test keeps just past tmax is visited by both walks") {
-        // Found by review: the slab test keeps a box entered within kSlabGrow past tmax,
-        // but a child waiting on the stack was dropped by a comparison without it
+        // The slab test keeps a box entered within kSlabGrow past tmax, so a child
+        // waiting on the stack must not be dropped by a comparison without it
         std::vector<Aabb> boxes;
         for (int k = 0; k < 12; ++k)
             boxes.push_back(

@@ -119,8 +119,8 @@ class Rng {
 
 /// Ray r on the engine (fast) and the module path (slow), closest and any hit; where it
 /// hits, also a ray leaving the surface from the hit point in a random direction, as
-/// shadow rays do (the tests' paths for origins on a primitive, issue 8 B5). True when r
-/// hits.
+/// shadow rays do (origins on a primitive take their own paths through the tests). True
+/// when r hits.
 inline bool check_both_paths(const Scene& scene, const ModuleTable& fast,
                              const ModuleTable& slow, const Ray& r, Rng& rng,
                              TraceCounters& cf, TraceCounters& cs) {

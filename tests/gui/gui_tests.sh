@@ -248,7 +248,7 @@ repeat)
         fail "not three renders of the frame"
     ! grep -q '^reused' out.txt || fail "--repeat reused a kept frame"
     # Each a full render, as raylab-render's: every camera ray cast again, none of the
-    # last frame's camera hits shaded again (the viewer did that until 2026-11-26)
+    # last frame's camera hits shaded again, though the unchanged view would allow it
     ! grep -q 'camera hits reused' out.txt || fail "--repeat reused the camera hits"
     grep -q '^rays: 76800 camera ([0-9]* in packets, 0 more reused)' report/settings.txt ||
         fail "the last frame did not cast all 76800 camera rays: $(grep '^rays' report/settings.txt)"

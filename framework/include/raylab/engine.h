@@ -65,7 +65,7 @@ struct GeometryEngine {
     /// module returns (t, position, n, uv), or with PrimRef::refined the refined position
     /// instead of the module's. (An out-parameter, not a return value: GCC assembles a
     /// returned PrimRef from its fields' stores on the stack and loads it back whole,
-    /// which the store buffer cannot forward: 4 % of a Cornell box camera ray.)
+    /// which the store buffer cannot forward: docs/decisions/0001.)
     void (*closest_hit)(const Scene& scene, const Ray& r, TraceCounters& counters,
                         Hit& hit, PrimRef& prim);
     /// What the module path's any-hit returns, counting the same tests, and leaving the

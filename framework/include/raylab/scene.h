@@ -1,10 +1,10 @@
 // raylab/scene.h: what a scene holds, and its closest-hit and any-hit queries.
 //
 // Planes are unbounded and tested one by one; spheres and triangles live in one BVH.
-// Every intersection goes through the ModuleTable, so the student's or the reference's
-// intersect_* runs, and the counters record how much work a query did. When the table
-// holds the reference's three intersect_* functions, the query runs in the reference's
-// engine instead (raylab/engine.h): same hits, same counts, fewer calls.
+// Every intersection goes through the ModuleTable (the BVH walked by the engine's vector
+// node tests when the build has it), and the counters record a query's work. When the
+// table holds the reference's three intersect_* functions, the query runs in the
+// reference's engine instead (raylab/engine.h): same hits, same counts, fewer calls.
 #pragma once
 
 #include <cstdint>
@@ -206,7 +206,7 @@ class Scene {
     // Names handed out to the triangles in source_: those after it follow on from this
     std::uint32_t next_source_ = 0;
     static constexpr std::uint64_t kLastSource = 0xffffffffu;  // the largest name kept
-    friend struct SceneTestAccess;  // tests/framework: the count of names near its end
+    friend struct SceneTestAccess;  // engine/tests: the count of names near its end
     // The engine that prepared engine_data_ at the last successful commit(), and its data
     const GeometryEngine* data_engine_ = nullptr;
     std::shared_ptr<const EngineData> engine_data_;

@@ -23,7 +23,7 @@
 // too large) is shown as it computed it. The module's normal is never replaced. The
 // reference's engine computes a triangle's point itself, from its intersection test's t
 // in double, when that test's error bound puts it within 2^-30 of its size of the same
-// exact point (solutions/engine_kernels.h; PrimRef::refined): 1/64 of an ulp at most
+// exact point (engine/src/engine_kernels.h; PrimRef::refined): 1/64 of an ulp at most
 // more.
 #pragma once
 
