@@ -10,8 +10,8 @@
 # (raylab-student-bench, which measures the student's tests beside the compiled reference)
 # and tests/stress/ (they measure the reference), tests/e2e/ (it makes a release), the
 # instructor guide, the benchmark notes (with the sampling benchmark's plots and CSV) and
-# the decision records (the reference's history); a link to one of those in a page the release keeps becomes
-# plain text. In their place it gets:
+# the decision records (the reference's history); a link to one of those in a page the
+# release keeps becomes plain text. In their place it gets:
 #   README.md             the students' README (scripts/release/README.md)
 #   reference/libraylab_reference.a
 #                         the reference compiled (no source): stubs fall back to it, the
