@@ -124,6 +124,11 @@ ModuleSelection auto_selection() {
 }
 
 std::string stub_modules_running(const ModuleSelection& selection) {
+    // No student module selected (--reference all): no student code runs at all
+    bool any_student = false;
+    for (const ModuleInfo& info : module_infos())
+        any_student = any_student || selection[info.module] == Impl::student;
+    if (!any_student) return "";
     const std::uint32_t stubs = detect_stubs();
     std::string list;
     for (const ModuleInfo& info : module_infos()) {

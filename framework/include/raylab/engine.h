@@ -101,7 +101,8 @@ struct GeometryEngine {
 };
 
 /// Makes engine the one whose prepare() every later Scene::commit() calls (null: none).
-/// The reference library registers its engine before main() when it has one.
+/// The reference library registers its engine before main() when it has one and the
+/// program uses it (reference::geometry_engine(), which links the engine's object file).
 void register_geometry_engine(const GeometryEngine* engine);
 
 namespace reference {

@@ -136,10 +136,11 @@ class Scene {
     /// Validates the contents (finite values, material indices, radii) and builds the
     /// BVH. Call after every geometry change; camera and light changes need no rebuild.
     /// Throws raylab::Error naming the first bad element; the scene then keeps its last
-    /// good BVH, and its queries call the modules (no engine) until a commit() succeeds.
-    /// The registered geometry engine then prepares its own data from the scene
-    /// (engine_data): after an edit without a commit() it would see the last committed
-    /// geometry, the module path the new one.
+    /// good BVH, and its queries call the modules (no engine) until a commit() succeeds:
+    /// query only after edits that keep the primitives' count, since that BVH indexes the
+    /// spheres and triangles it was built over. The registered geometry engine then
+    /// prepares its own data from the scene (engine_data), and reads it beside the
+    /// current triangles: an edit without a commit() leaves it a mix of both.
     void commit();
 
     /// Bounds of spheres and triangles (planes excluded); empty box when there are none.
