@@ -7,8 +7,11 @@
 #
 # The release is this tree without what students must not have or cannot build: solutions/
 # and engine/ (the reference and its fast path), bench/ but for the student bench's sources
-# (raylab-student-bench, which measures the student's tests beside the compiled reference)
-# and tests/stress/ (they measure the reference), tests/e2e/ (it makes a release), the
+# (raylab-student-bench, which measures the student's tests beside the compiled reference;
+# its formulations and ray sets ship compiled, as reference/libraylab_bench_kernels.a, since
+# they hold working sphere and triangle tests) and tests/stress/ (they measure the
+# reference), tests/e2e/ (it makes a release), the graders' mutants, the hostile hand-ins
+# and the class tests (near-copies of the reference or copies of it), the
 # instructor guide, the benchmark notes (with the sampling benchmark's plots and CSV) and
 # the decision records (the reference's history); a link to one of those in a page the
 # release keeps becomes plain text. In their place it gets:
@@ -83,9 +86,10 @@ done
 # What never goes to students
 excluded() {
     case $1 in
-        bench/CMakeLists.txt | bench/student_* | bench/kernels.* | bench/kernel_cases.* | \
-            bench/report.* | bench/rng.h) return 1 ;;
+        bench/CMakeLists.txt | bench/student_bench.cpp | bench/kernels.h | bench/kernel_cases.h | \
+            bench/report.h | bench/rng.h | bench/student_cases.h) return 1 ;;
         solutions/* | engine/* | bench/* | tests/stress/* | tests/e2e/* | docs/instructor-guide.md | \
+            tests/grading/mutants/* | tests/grading/handins/* | tests/class/* | \
             docs/benchmarks.md | docs/sampling-benchmarks.md | docs/images/sampling-benchmark* | \
             docs/data/* | docs/decisions/* | \
             tests/data/golden/* | build*/* | scripts/release/* | README.md) return 0 ;;
@@ -179,6 +183,15 @@ else
     die "this tree has no raylab_reference target (framework/CMakeLists.txt): cannot ship" \
         "the compiled reference"
 fi
+# The student bench's formulations and ray sets, compiled: its sources hold working tests
+if ninja -C "$BUILD" -t targets all 2>/dev/null | grep -q '^raylab_bench_kernels:'; then
+    ninja -C "$BUILD" raylab_bench_kernels >>"$BUILD/release-reference.log" 2>&1 ||
+        die "building raylab_bench_kernels failed: see $BUILD/release-reference.log"
+    lib=$(find "$BUILD" -name libraylab_bench_kernels.a -print -quit)
+    [[ -n $lib ]] || die "raylab_bench_kernels built no libraylab_bench_kernels.a"
+    cp "$lib" "$OUT/reference/libraylab_bench_kernels.a"
+    note "reference/libraylab_bench_kernels.a ($(du -k "$lib" | cut -f1) KiB)"
+fi
 
 # Images within the tolerance the graders use: compilers differ in their last bits
 if ! python3 "$RAYLAB_ROOT/tests/grading/check_golden.py" --compare \
@@ -190,10 +203,16 @@ fi
 # ---- Check the release -------------------------------------------------------------------
 
 [[ ! -e $OUT/solutions ]] || die "the release holds solutions/"
-src=$(find "$OUT/reference" -type f ! -name libraylab_reference.a)
+src=$(find "$OUT/reference" -type f ! -name libraylab_reference.a ! -name libraylab_bench_kernels.a)
 [[ -z $src ]] || die "reference/ holds more than the library: $src"
 leaks=$(grep -rl 'raylab::reference::[a-z_]*(' "$OUT/exercises" "$OUT/grading" "$OUT/tests/grading" || true)
 [[ -z $leaks ]] || die "these release files call the reference: $leaks"
+# No working intersection test in source: the bench's formulations, the graders' mutants
+# and the hostile hand-ins (near-copies of the reference) stay in the instructor's tree
+for f in bench/kernels.cpp bench/kernel_cases.cpp bench/student_cases.cpp bench/student_test \
+    tests/grading/mutants tests/grading/handins tests/class; do
+    [[ ! -e $OUT/$f ]] || die "the release holds $f, which holds working intersection tests"
+done
 
 if [[ -n ${RELEASE_CHECK_DIR:-} ]]; then
     CHECK=$(absolute "$RELEASE_CHECK_DIR")
