@@ -376,7 +376,7 @@ compile_cached() {
     # together by a macro): never cached, like #embed
     grep -rqE 'asm|incbin|embed|##' "$dir" && return 0
     tr ' \\' '\n\n' <"$2.d" | grep -v -e '^$' -e ':$' -e '^@HANDIN@/' -e '^@INCLUDE@/' \
-        -e '^/usr/include/' -e '^/usr/lib/gcc/' | grep -q . && return 0
+        -e '^/usr/include/' -e '^/usr/lib/gcc/' | grep . >/dev/null && return 0
     to_cache "$key" "$2"
 }
 
@@ -443,7 +443,7 @@ link_cached() {
         for other in "${!own[@]}"; do cat "${compiled[$other]}.calls"; done | sort -u >"$obj.all-calls"
         for other in "${MODULES[@]}"; do
             [[ -n ${own[$other]:-} || -z ${compiled[$other]:-} ]] && continue
-            if comm -12 "${compiled[$other]}.defines" "$obj.all-calls" | grep -q .; then
+            if comm -12 "${compiled[$other]}.defines" "$obj.all-calls" | grep . >/dev/null; then
                 own[$other]=1 grown=1
             fi
         done

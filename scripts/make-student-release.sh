@@ -171,7 +171,7 @@ grep '^\[raylab\] wrote' "$BUILD/release-golden.log" | sed 's/^\[raylab\] /    /
 
 step "Building the reference library (raylab_reference) for the release"
 mkdir -p "$OUT/reference"
-if ninja -C "$BUILD" -t targets all 2>/dev/null | grep -q '^raylab_reference:'; then
+if ninja -C "$BUILD" -t targets all 2>/dev/null | grep '^raylab_reference:' >/dev/null; then
     ninja -C "$BUILD" raylab_reference raylab-render >"$BUILD/release-reference.log" 2>&1 ||
         die "building raylab_reference failed: see $BUILD/release-reference.log"
     lib=$(find "$BUILD" -name libraylab_reference.a -print -quit)
@@ -184,7 +184,7 @@ else
         "the compiled reference"
 fi
 # The student bench's formulations and ray sets, compiled: its sources hold working tests
-if ninja -C "$BUILD" -t targets all 2>/dev/null | grep -q '^raylab_bench_kernels:'; then
+if ninja -C "$BUILD" -t targets all 2>/dev/null | grep '^raylab_bench_kernels:' >/dev/null; then
     ninja -C "$BUILD" raylab_bench_kernels >>"$BUILD/release-reference.log" 2>&1 ||
         die "building raylab_bench_kernels failed: see $BUILD/release-reference.log"
     lib=$(find "$BUILD" -name libraylab_bench_kernels.a -print -quit)

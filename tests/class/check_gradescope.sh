@@ -29,7 +29,7 @@ done
 grep -qx "raylab/.gradescope-trusted" <<<"$listing" && fail "a package made without --trusted is marked trusted"
 RAYLAB_NO_INSTALL=1 "$root/scripts/dev.sh" gradescope "$work/pkg/trusted.zip" --seed 1 --trusted \
     >"$work/make-trusted.log" 2>&1 || { cat "$work/make-trusted.log"; fail "dev.sh gradescope --trusted failed"; }
-unzip -Z1 "$work/pkg/trusted.zip" | grep -qx "raylab/.gradescope-trusted" ||
+unzip -Z1 "$work/pkg/trusted.zip" | grep -x "raylab/.gradescope-trusted" >/dev/null ||
     fail "dev.sh gradescope FILE.zip --trusted does not mark the package trusted"
 
 unzip -q "$work/pkg/autograder.zip" -d "$work/ag/source"

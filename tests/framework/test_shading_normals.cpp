@@ -58,16 +58,18 @@ void count(const Hit& hit, const Ray& r, const Scene& scene, Count& c) {
     }
 }
 
-// The scene's camera rays at W x H, both paths
+// The scene's camera rays at W x H, normalised as the renderer casts them (the camera
+// is made once: probe_pixel makes it and the depth range again for every pixel)
 Count camera_count(const Scene& scene, const ModuleTable& m, int W, int H) {
-    RenderSettings settings;
-    settings.width = W;
-    settings.height = H;
+    const PinholeCamera camera = make_camera(m, scene.view);
     Count c;
     for (int j = 0; j < H; ++j)
         for (int i = 0; i < W; ++i) {
-            const PixelProbe p = probe_pixel(scene, scene.view, settings, m, i, j);
-            if (p.hit) count(*p.hit, p.ray, scene, c);
+            Ray r = m.camera_ray(camera, m.image_plane_point(i, j, W, H));
+            r.w = r.w / glm::length(r.w);
+            TraceCounters counters;
+            if (const auto hit = scene.closest_hit(m, r, counters))
+                count(*hit, r, scene, c);
         }
     return c;
 }
