@@ -95,14 +95,15 @@ chmod 600 "$ROOT/private/seed"
 if [[ ${RAYLAB_SKIP_DEPS:-0} != 1 ]]; then
     bash "$SRC/scripts/install-deps.sh" grade
 fi
-# Build the graders once on the untouched stubs: each submission then compiles its own files
+# Build the graders once (in source/raylab/build-grade/, where grade.sh builds them in a
+# tree) on the untouched stubs: each submission then compiles only its own files
 mkdir -p "$ROOT/stubs"
 cp "$SRC"/exercises/[0-9][0-9]_*.cpp "$ROOT/stubs/"
 # The stubs are graded as a submission is, so a container that cannot confine a hand-in's
 # compile fails here, where the instructor reads the log, not at each student's upload
 trusted=()
 [[ -f $SRC/.gradescope-trusted ]] && trusted=(--trusted)
-SUBMISSION=$ROOT/stubs GRADE_OUT=$ROOT/setup-grade GRADE_BUILD_DIR=$ROOT/build-grade \
+SUBMISSION=$ROOT/stubs GRADE_OUT=$ROOT/setup-grade GRADE_BUILD_DIR=$SRC/build-grade \
     bash "$SRC/scripts/grade.sh" --expect not-started "${trusted[@]}" </dev/null || {
     echo "setup.sh: grading the untouched stubs failed (above). Where it says that this" \
         "container can confine a hand-in's compile neither with bubblewrap nor with Landlock," \
@@ -122,7 +123,7 @@ SRC=$ROOT/source/raylab
 mkdir -p "$ROOT/results"
 trusted=()
 [[ -f $SRC/.gradescope-trusted ]] && trusted=(--trusted)
-SUBMISSION=$ROOT/submission GRADE_OUT=$ROOT/results/grade GRADE_BUILD_DIR=$ROOT/build-grade \
+SUBMISSION=$ROOT/submission GRADE_OUT=$ROOT/results/grade GRADE_BUILD_DIR=$SRC/build-grade \
     bash "$SRC/scripts/grade.sh" --private "$ROOT/private" "${trusted[@]}" </dev/null \
     >"$ROOT/results/grade.log" 2>&1
 status=$?

@@ -35,9 +35,9 @@
 # Environment: RELEASE_BUILD_DIR=DIR, the build of this tree that writes the golden data
 # (default build-student-release/; an existing Ninja build of this tree is used with its
 # options, so CI's own build serves); RELEASE_KEEP_CHECK=1 keeps the scratch check folder;
-# RELEASE_CHECK_DIR=DIR makes the checks in DIR (new or empty) and keeps it, so that a test
-# can use the release's builds (DIR/build, DIR/grade-build); CMAKE_ARGS="..." adds options to
-# every configure (as in scripts/dev.sh).
+# RELEASE_CHECK_DIR=DIR makes the checks in DIR (new or empty) and keeps it, with the copy
+# of the release they build and grade (DIR/raylab: build/, build-grade/); CMAKE_ARGS="..."
+# adds options to every configure (as in scripts/dev.sh).
 set -euo pipefail
 # shellcheck source=lib/common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh"
@@ -242,21 +242,26 @@ listed=$(bash "$OUT/scripts/dev.sh" help | grep -E '^  (bench|grade-reference|gr
 note "links resolve, every stub lists its TODO(student) steps, dev.sh help lists no" \
     "instructor command"
 
-step "Check 1: the release builds (warnings as errors) in $CHECK/build"
-cmake -S "$OUT" -B "$CHECK/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WERROR=ON \
+# The checks build and grade a copy of the release, with their build folders inside it as a
+# student's are (build/, build-grade/), and leave OUT as it is handed out. ccache (dev.sh
+# test) keys compiles on paths relative to the build folder, so this tree's builds serve them
+COPY=$CHECK/raylab
+cp -a "$OUT" "$COPY"
+step "Check 1: the release builds (warnings as errors) in $COPY/build"
+cmake -S "$COPY" -B "$COPY/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WERROR=ON \
     "${extra[@]}" >"$CHECK/configure.log" 2>&1 || {
     cat "$CHECK/configure.log" >&2
     die "the release does not configure"
 }
 grep -E '^-- raylab' "$CHECK/configure.log" | sed 's/^/    /' || true
-ninja -C "$CHECK/build" >"$CHECK/build.log" 2>&1 || {
+ninja -C "$COPY/build" >"$CHECK/build.log" 2>&1 || {
     tail -n 40 "$CHECK/build.log" >&2
     die "the release does not build"
 }
 note "built"
 
 step "Check 2: the viewer starts"
-viewer=$CHECK/build/framework/viewer/raylab
+viewer=$COPY/build/framework/viewer/raylab
 if [[ ! -x $viewer ]]; then
     note "SKIPPED: no viewer was built (RAYLAB_WITH_GUI needs libglfw3-dev and libimgui-dev)"
 elif ! have xvfb-run; then
@@ -276,7 +281,7 @@ else
     [[ -s $CHECK/viewer.png ]] || die "the viewer wrote no screenshot"
     n='\([0-9]*\)'
     crop=$(sed -n "s/.*image at $n,$n size ${n}x$n.*/\\1,\\2,\\3,\\4/p" "$CHECK/viewer.log")
-    "$CHECK/build/tests/gui/raylab-png-diff" "$CHECK/viewer.png" "$CHECK/reference.png" \
+    "$COPY/build/tests/gui/raylab-png-diff" "$CHECK/viewer.png" "$CHECK/reference.png" \
         --crop "$crop" --tolerance 2 >"$CHECK/viewer-diff.log" 2>&1 || {
         cat "$CHECK/viewer-diff.log" >&2
         die "the release's first picture is not the reference's Cornell box"
@@ -285,8 +290,8 @@ else
 fi
 
 step "Check 3: the graders run on the untouched exercises and score zero"
-GRADE_OUT=$CHECK/grade GRADE_BUILD_DIR=$CHECK/grade-build SUBMISSION='' \
-    bash "$OUT/scripts/grade.sh" --expect not-started >"$CHECK/grade.log" 2>&1 || {
+GRADE_OUT=$CHECK/grade GRADE_BUILD_DIR=$COPY/build-grade SUBMISSION='' \
+    bash "$COPY/scripts/grade.sh" --expect not-started >"$CHECK/grade.log" 2>&1 || {
     cat "$CHECK/grade.log" >&2
     die "the graders of the release did not score the stubs zero"
 }

@@ -45,8 +45,8 @@ grep -q '^./scripts/dev.sh run ' "$rel/README.md" || fail "the release's README 
 note "build/cornell.png written ($(du -k "$rel/build/cornell.png" | cut -f1) KiB)"
 end
 
-# The graders that the release's own check built serve every grading below
-export GRADE_BUILD_DIR=$check/grade-build
+# Every grading below builds and uses the release's own build-grade/, as a student's does
+unset GRADE_BUILD_DIR
 grade() {  # grade NAME [ARGS...]: ./scripts/dev.sh grade in the release, reports in WORK/NAME
     local name=$1
     shift
@@ -68,14 +68,17 @@ SUBMISSION=$work/correct grade correct --expect full
 end
 
 begin "the viewer's Run tests against grade, on a half-done exercises/"
-viewer=$check/build/framework/viewer/raylab
-[[ -x $viewer ]] || fail "the release's check built no viewer ($viewer)"
+# The student's viewer: what ./scripts/dev.sh run builds when there is a display
+ninja -C "$rel/build" raylab-viewer >"$work/viewer-build.log" 2>&1 ||
+    { tail -n 40 "$work/viewer-build.log"; fail "the release's viewer does not build"; }
+viewer=$rel/build/framework/viewer/raylab
+[[ -x $viewer ]] || fail "the release's build/ has no viewer ($viewer)"
 have xvfb-run || fail "xvfb-run is missing (scripts/install-deps.sh gui)"
 # Modules 01-03 right, 04 does not compile, the rest untouched
 for id in 01_pixel_loop 02_camera 03_plane; do cp "$work/correct/$id.cpp" "$rel/exercises/"; done
 echo 'this line does not compile' >>"$rel/exercises/04_sphere.cpp"
 grade half
-# The viewer built by the release's check: Run tests at start, quit once they are done
+# The viewer: Run tests at start, quit once they are done
 xvfb-run -a -s '-screen 0 1280x800x24' "$viewer" --width 64 --height 48 --run-tests \
     --frames 2 >"$work/viewer.log" 2>&1 || { cat "$work/viewer.log"; fail "the viewer failed"; }
 python3 - "$work/half/cases.json" "$work/viewer.log" <<'PY' || fail "the viewer's Run tests and grade differ (above)"
