@@ -4,8 +4,8 @@
 #  - The registry lines are the guide's own code block.
 #  - The files this script changes must be exactly the files the numbered steps name: a
 #    step the guide drops, or a file it forgets, fails here.
-#  - Then, in the copy: the graders, raylab-render and the framework tests build; the module
-#    tables and the handout's graded list match (the ctest checks of the docs); the module
+#  - Then, in the copy: the graders, raylab-render and the module switch's tests build; the
+#    module tables and the handout's graded list match (the ctest checks of the docs); the module
 #    switch's tests pass; the reference gets full marks in every module, 11 included; the
 #    untouched stubs, 11 included, are "not started"; raylab-render --help names the module.
 # Usage: tests/e2e/add_module.sh ROOT WORK   (WORK is emptied; CMAKE_ARGS adds configure options)
@@ -161,20 +161,20 @@ if [[ $changed != "$named" ]]; then
 fi
 note "the $(wc -l <<<"$changed") files changed are the files the guide's steps name"
 
-step "add-module: build the copy (graders, raylab-render, framework tests)"
+step "add-module: build the copy (graders, raylab-render, the module switch's tests)"
 extra=()
 if [[ -n ${CMAKE_ARGS:-} ]]; then read -r -a extra <<<"$CMAKE_ARGS"; fi
 cmake -S "$tree" -B "$tree/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYLAB_WITH_GUI=OFF \
     "${extra[@]}" >"$work/configure.log" 2>&1 || { cat "$work/configure.log"; fail "configure failed"; }
 ninja -C "$tree/build" raylab-grading-tests raylab-grade raylab_worker_main raylab_core \
-    raylab-worker-reference raylab-render raylab-framework-tests >"$work/build.log" 2>&1 ||
+    raylab-worker-reference raylab-render raylab-module-tests >"$work/build.log" 2>&1 ||
     { tail -n 40 "$work/build.log"; fail "the copy with $id does not build"; }
 
 step "add-module: the copy's checks"
 python3 "$tree/tests/handouts/check_module_tables.py" "$tree" | sed 's/^/    /'
 python3 "$tree/tests/handouts/check_graded_lists.py" "$tree" \
     "$tree/build/tests/grading/raylab-grading-tests" | grep "$id" | sed 's/^/    /'
-"$tree/build/tests/framework/raylab-framework-tests" --test-suite=modules --no-colors \
+"$tree/build/tests/framework/raylab-module-tests" --test-suite=modules --no-colors \
     >"$work/modules.log" 2>&1 || { cat "$work/modules.log"; fail "the module switch's tests fail"; }
 note "framework tests of the module switch: $(grep -o 'test cases:.*' "$work/modules.log")"
 "$tree/build/framework/raylab-render" --help | grep 'fresnel' >/dev/null || fail "raylab-render --help does not name fresnel"
