@@ -45,8 +45,9 @@ grep -q '^./scripts/dev.sh run ' "$rel/README.md" || fail "the release's README 
 note "build/cornell.png written ($(du -k "$rel/build/cornell.png" | cut -f1) KiB)"
 end
 
-# Every grading below builds and uses the release's own build-grade/, as a student's does
-unset GRADE_BUILD_DIR
+# The graders that the release's check built (in its copy of the release) serve every
+# grading below, the viewer's Run tests included
+export GRADE_BUILD_DIR=$check/raylab/build-grade
 grade() {  # grade NAME [ARGS...]: ./scripts/dev.sh grade in the release, reports in WORK/NAME
     local name=$1
     shift
