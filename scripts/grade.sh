@@ -422,7 +422,7 @@ outside_names() {
                     $bad ||= !defined $p || $p =~ m{^/} || $p =~ m{(^|/)\.\.(/|$)};
                 }
                 if ($bad) { print "$ARGV:$n\n"; exit 0; }
-            }') | head -n 1
+            }') | sed -n 1p
 }
 
 declare -A compiled=() # module -> its object, compiled and checked

@@ -181,8 +181,8 @@ note "framework tests of the module switch: $(grep -o 'test cases:.*' "$work/mod
 export GRADE_BUILD_DIR=$tree/build
 GRADE_OUT=$work/reference bash "$tree/scripts/grade.sh" --reference --expect full \
     >"$work/reference.log" 2>&1 || { cat "$work/reference.log"; fail "the reference is not given full marks"; }
-grep -E "^ *$id" "$work/reference/summary.txt" | head -n 1 | sed 's/^/    reference: /'
+sed -n "/^ *$id/{s/^/    reference: /;p;q;}" "$work/reference/summary.txt"
 GRADE_OUT=$work/stubs bash "$tree/scripts/grade.sh" --expect not-started \
     >"$work/stubs.log" 2>&1 || { cat "$work/stubs.log"; fail "the stubs are not all 'not started'"; }
-grep -E "^ *$id" "$work/stubs/summary.txt" | head -n 1 | sed 's/^/    stubs:     /'
+sed -n "/^ *$id/{s/^/    stubs:     /;p;q;}" "$work/stubs/summary.txt"
 step "add-module: $id added by the guide's steps builds and grades"
