@@ -14,7 +14,7 @@
 #                      target (build-fuzz/, when clang is installed), the users' paths end to
 #                      end (tests/e2e/user_paths.sh: a student release and its checks, the
 #                      student's first commands, grade and Run tests in it, grade-class),
-#                      scripts/stress-matrix.sh (its four configurations, when it exists),
+#                      scripts/stress-matrix.sh (its five configurations, when it exists),
 #                      then every test in build-ci/ (GUI tests under Xvfb); ends with each
 #                      step's time and the slowest tests. Compiles through ccache, its cache
 #                      in build-cache/
@@ -360,7 +360,7 @@ cmd_test() {
     else
         warn "clang++ is missing: the fuzz targets did not run (scripts/install-deps.sh fuzz)"
     fi
-    # The numerical stress matrix (its four configurations; g++ -O0 is the sanitizer build
+    # The numerical stress matrix (its five configurations; g++ -O0 is the sanitizer build
     # above) compiles on both cores while the users' paths below, which mostly grade one
     # hand-in at a time, leave one idle: the two run at once, the matrix's output kept in a
     # file and printed once both are done
