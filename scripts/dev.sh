@@ -293,8 +293,13 @@ timed() {
     local label=$1 t=$SECONDS rc=0
     shift
     "$@" || rc=$?
-    STEP_TIMES+=("$(printf '%5d s  %s' $((SECONDS - t)) "$label")")
+    record_time $((SECONDS - t)) "$label"
     return "$rc"
+}
+
+# record_time SECONDS LABEL: one row of the table times_table prints
+record_time() {
+    STEP_TIMES+=("$(printf '%5d s  %s' "$1" "$2")")
 }
 
 # Each step's time, ccache's hits and ctest's slowest tests in DIR
@@ -387,8 +392,8 @@ cmd_test() {
         wait "$matrix_pid" || matrix_status=$?
         step "The numerical stress matrix's output ($matrix_log)"
         cat "$matrix_log"
-        STEP_TIMES+=("$(printf '%5d s  %s' $((SECONDS - matrix_t0)) \
-            "stress matrix (scripts/stress-matrix.sh), from its start beside the users' paths")")
+        record_time $((SECONDS - matrix_t0)) \
+            "stress matrix (scripts/stress-matrix.sh), from its start beside the users' paths"
         ((matrix_status == 0)) || die "scripts/stress-matrix.sh failed (output above)"
     fi
 
